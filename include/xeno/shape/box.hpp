@@ -1,0 +1,76 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Box<T>: a rectangular box centred on its centre of mass, given by half extents along the local
+// x, y and z axes. Support by sign selection (COLLISION-NOTES.md 6): exact and branch-light;
+// ties (a zero component of the direction) resolve to + so the answer is deterministic.
+#pragma once
+
+#include "../error.hpp"
+#include "../math/aabb.hpp"
+#include "support_face.hpp"
+
+namespace xeno {
+
+/// An oriented box; local frame centred on the box, faces perpendicular to the axes.
+template <class T>
+class Box {
+public:
+    using scalar_type = T;
+
+    /// A box with the given half extents (metres); each must be finite and > 0.
+    explicit Box(const Vec3<T>& half_extents) : half_extents_(half_extents) {
+        detail::require_positive(half_extents.x, "Box", "half_extents.x");
+        detail::require_positive(half_extents.y, "Box", "half_extents.y");
+        detail::require_positive(half_extents.z, "Box", "half_extents.z");
+    }
+    /// A box with half extents (hx, hy, hz).
+    Box(T hx, T hy, T hz) : Box(Vec3<T>{hx, hy, hz}) {}
+
+    const Vec3<T>& half_extents() const { return half_extents_; }
+
+    /// The farthest point along d (local frame); d need not be unit.
+    Vec3<T> support(const Vec3<T>& d) const {
+        return {d.x >= T(0) ? half_extents_.x : -half_extents_.x, d.y >= T(0) ? half_extents_.y : -half_extents_.y,
+                d.z >= T(0) ? half_extents_.z : -half_extents_.z};
+    }
+    /// The face whose outward normal is most aligned with d: four corners, counter-clockwise.
+    SupportFace<T> support_face(const Vec3<T>& d) const;
+    Aabb<T> local_bounds() const { return {-half_extents_, half_extents_}; }
+    /// Radius of the smallest sphere about the centre holding the box: its half diagonal.
+    T bounding_radius() const { return length(half_extents_); }
+    /// A point strictly inside: the centre.
+    Vec3<T> interior_point() const { return Vec3<T>::zero(); }
+    T volume() const { return T(8) * half_extents_.x * half_extents_.y * half_extents_.z; }
+
+private:
+    Vec3<T> half_extents_;  ///< metres, each > 0
+};
+
+template <class T>
+SupportFace<T> Box<T>::support_face(const Vec3<T>& d) const {
+    const Vec3<T> a = abs(d);
+    const int axis = max_axis(a);
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const T sign = d[axis] >= T(0) ? T(1) : T(-1);
+    SupportFace<T> face;
+    face.normal = Vec3<T>::axis(axis) * sign;
+    // Corners in the (u, v) plane; (u, v, axis) is right-handed, so this order is
+    // counter-clockwise seen from +axis; reversed for the -axis face.
+    const T cu[4] = {T(1), T(-1), T(-1), T(1)};
+    const T cv[4] = {T(1), T(1), T(-1), T(-1)};
+    for (int k = 0; k < 4; ++k) {
+        const int i = sign > T(0) ? k : 3 - k;
+        Vec3<T> p;
+        p[axis] = sign * half_extents_[axis];
+        p[u] = cu[i] * half_extents_[u];
+        p[v] = cv[i] * half_extents_[v];
+        face.push(p);
+    }
+    return face;
+}
+
+namespace f32 { using Box = xeno::Box<float>; }
+namespace f64 { using Box = xeno::Box<double>; }
+
+}  // namespace xeno

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs what xeno's tests, benchmarks and examples need on Debian/Ubuntu, only when missing:
+# idempotent, and silent when everything is already there. The library itself needs none of it.
+#   scripts/setup.sh test   compilers, CMake, doctest, Catch2, OSMesa, libpng, libccd
+#   scripts/setup.sh main   the same plus ffmpeg (GIF/MP4) and gnuplot (plots)
+set -euo pipefail
+
+packages=(cmake ninja-build g++ clang libclang-rt-14-dev pkg-config
+          doctest-dev catch2 libosmesa6-dev libpng-dev libccd-dev)
+if [[ "${1:-test}" == main ]]; then
+  packages+=(ffmpeg gnuplot-nox)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+if ! command -v apt-get >/dev/null; then
+  echo "setup: apt-get not found; install these by hand: ${missing[*]}" >&2
+  exit 1
+fi
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  sudo="sudo"
+fi
+echo "setup: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq >/dev/null
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

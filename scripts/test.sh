@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The README's second command: set up, then build and run everything xeno tests.
+#   1. g++ Release, warnings as errors: every public header compiled alone, tests (unit + slow),
+#      benchmarks and examples built
+#   2. clang++ Release, warnings as errors: the tests again
+#   3. g++ with -fsanitize=address,undefined -fno-sanitize-recover=all: the tests again
+#   4. the README's example compiled by three consumer projects: plain -I include,
+#      add_subdirectory(xeno) and find_package(xeno CONFIG REQUIRED) after cmake --install
+#   5. the libFuzzer targets for a bounded time (clang) and the g++/clang++ determinism hash
+# XENO_TEST_QUICK=1 runs only step 1 without the slow label (for iterating).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+scripts/setup.sh test
+
+jobs=$(nproc 2>/dev/null || echo 2)
+build=${XENO_BUILD_DIR:-$root/build}
+start=$(date +%s)
+step() { printf '\n=== %s (%ds elapsed)\n' "$*" $(( $(date +%s) - start )); }
+
+configure_and_test() {  # name, extra cmake args...
+  local name=$1; shift
+  cmake -S "$root" -B "$build/$name" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+        -DXENO_WARNINGS_AS_ERRORS=ON "$@" >/dev/null
+  cmake --build "$build/$name" -j "$jobs"
+  ctest --test-dir "$build/$name" -j "$jobs" --output-on-failure ${ctest_args:-}
+}
+
+if [[ "${XENO_TEST_QUICK:-0}" == 1 ]]; then
+  step "g++ Release (quick: no slow tests)"
+  ctest_args="-LE slow" configure_and_test gcc
+  exit 0
+fi
+
+step "g++ Release, -Werror, all targets"
+configure_and_test gcc -DCMAKE_CXX_COMPILER=g++
+
+step "clang++ Release, -Werror, tests"
+configure_and_test clang -DCMAKE_CXX_COMPILER=clang++ -DXENO_BUILD_BENCH=OFF -DXENO_BUILD_EXAMPLES=OFF \
+  -DXENO_BUILD_HEADER_CHECK=ON
+
+step "g++ with AddressSanitizer and UndefinedBehaviorSanitizer, tests"
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+configure_and_test asan -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DXENO_BUILD_BENCH=OFF -DXENO_BUILD_EXAMPLES=OFF -DXENO_BUILD_HEADER_CHECK=OFF -DXENO_SANITIZE=ON \
+  "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+
+step "consumer projects compile the README's example"
+tests/consumers/run.sh "$build/consumers"
+
+step "all passed"
