@@ -8,6 +8,7 @@
 
 #include "../error.hpp"
 #include "../math/aabb.hpp"
+#include "mass_properties.hpp"
 #include "support_face.hpp"
 
 namespace xeno {
@@ -42,6 +43,11 @@ public:
     /// A point strictly inside: the centre.
     Vec3<T> interior_point() const { return Vec3<T>::zero(); }
     T volume() const { return T(8) * half_extents_.x * half_extents_.y * half_extents_.z; }
+    /// Density 1: I = V/3 · diag(hy² + hz², hx² + hz², hx² + hy²).
+    MassProperties<T> unit_mass_properties() const {
+        const Vec3<T> h2 = hadamard(half_extents_, half_extents_);
+        return {volume(), Vec3<T>::zero(), Mat3<T>::diagonal(Vec3<T>{h2.y + h2.z, h2.x + h2.z, h2.x + h2.y} * (volume() / T(3)))};
+    }
 
 private:
     Vec3<T> half_extents_;  ///< metres, each > 0

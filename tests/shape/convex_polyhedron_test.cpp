@@ -1,0 +1,104 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+#include "support/approx.hpp"
+
+#include <xeno/shape/polyhedra.hpp>
+
+#include <string>
+
+using namespace xeno;
+using xeno::test::near;
+
+TEST_CASE_TEMPLATE("builders produce closed convex polyhedra centred on their centroid", T, float, double) {
+    const ConvexPolyhedron<T> box = make_box_polyhedron(Vec3<T>{T(1), T(2), T(3)});
+    CHECK(box.vertices().size() == 8);
+    CHECK(box.faces().size() == 6);
+    CHECK(box.edges().size() == 12);
+    CHECK(near(box.volume(), T(48)));
+    const ConvexPolyhedron<T> wedge = make_triangular_prism(T(1), T(3), T(0.5));
+    CHECK(wedge.vertices().size() == 6);
+    CHECK(wedge.faces().size() == 5);
+    CHECK(near(wedge.volume(), T(3)));  // triangle area 3 × depth 1
+    CHECK(near(wedge.interior_point(), Vec3<T>::zero()));
+    const ConvexPolyhedron<T> tetra = make_tetrahedron(T(2));
+    CHECK(tetra.faces().size() == 4);
+    CHECK(near(tetra.volume(), T(8) / (T(6) * std::sqrt(T(2)))));
+    CHECK(near(tetra.interior_point(), Vec3<T>::zero()));
+    bool has_down_face = false;
+    for (const auto& f : tetra.faces()) has_down_face |= near(f.normal, Vec3<T>{T(0), T(-1), T(0)});
+    CHECK(has_down_face);
+    const ConvexPolyhedron<T> prism = make_regular_prism(6, T(1), T(1));
+    CHECK(prism.vertices().size() == 12);
+    CHECK(prism.faces().size() == 8);
+    // Hexagon of circumradius 1: area 3√3/2, height 2.
+    CHECK(near(prism.volume(), T(3) * std::sqrt(T(3))));
+    for (const ConvexPolyhedron<T>* p : {&box, &wedge, &tetra, &prism}) {
+        const std::size_t v = p->vertices().size(), e = p->edges().size(), f = p->faces().size();
+        CHECK(v + f == e + 2);  // Euler characteristic of a closed convex surface
+        for (const auto& face : p->faces()) CHECK(near(length(face.normal), T(1)));
+    }
+}
+
+TEST_CASE_TEMPLATE("hill climbing and scanning agree on a prism with many sides", T, float, double) {
+    const ConvexPolyhedron<T> prism = make_regular_prism(64, T(1), T(0.5));
+    REQUIRE(prism.vertices().size() > ConvexPolyhedron<T>::hill_climb_threshold);
+    for (int k = 0; k < 1000; ++k) {
+        const T a = T(k) * T(0.0123), b = T(k) * T(0.731);
+        const Vec3<T> d{std::cos(a) * std::cos(b), std::sin(b), std::sin(a) * std::cos(b)};
+        CHECK(near(dot(prism.vertices()[prism.support_index_hill_climb(d)], d),
+                   dot(prism.vertices()[prism.support_index_scan(d)], d)));
+    }
+}
+
+TEST_CASE_TEMPLATE("an off-centre polyhedron keeps its origin and reports an interior centroid", T, float, double) {
+    const ConvexPolyhedron<T> unit = make_box_polyhedron(Vec3<T>{T(0.5), T(0.5), T(0.5)});
+    std::vector<Vec3<T>> v;
+    for (const Vec3<T>& p : unit.vertices()) v.push_back(p + Vec3<T>{T(10.5), T(0), T(0)});
+    std::vector<std::vector<std::uint32_t>> faces;
+    for (const auto& f : unit.faces())
+        faces.emplace_back(unit.face_indices().begin() + f.first, unit.face_indices().begin() + f.first + f.count);
+    const ConvexPolyhedron<T> far_box(v, faces);
+    CHECK(near(far_box.interior_point(), Vec3<T>{T(10.5), T(0), T(0)}));
+    CHECK(near(far_box.bounding_radius(), length(Vec3<T>{T(11), T(0.5), T(0.5)})));
+    const auto [centred, shift] = far_box.recentered();
+    CHECK(near(shift, Vec3<T>{T(10.5), T(0), T(0)}));
+    CHECK(near(centred.interior_point(), Vec3<T>::zero()));
+    CHECK(near(centred.unit_mass_properties().inertia, far_box.unit_mass_properties().inertia));
+}
+
+TEST_CASE_TEMPLATE("polyhedron construction rejects broken input with a clear message", T, float, double) {
+    const ConvexPolyhedron<T> unit = make_box_polyhedron(Vec3<T>{T(1), T(1), T(1)});
+    std::vector<std::vector<std::uint32_t>> faces;
+    for (const auto& f : unit.faces())
+        faces.emplace_back(unit.face_indices().begin() + f.first, unit.face_indices().begin() + f.first + f.count);
+    const std::vector<Vec3<T>> v = unit.vertices();
+
+    auto message = [](auto&& build) -> std::string {
+        try {
+            build();
+        } catch (const InvalidArgument& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    std::vector<Vec3<T>> nan_vertices = v;
+    nan_vertices[3].y = std::numeric_limits<T>::quiet_NaN();
+    CHECK(message([&] { ConvexPolyhedron<T>(nan_vertices, faces); }).find("vertex 3 must be finite") != std::string::npos);
+    auto open = faces;
+    open.pop_back();
+    CHECK(message([&] { ConvexPolyhedron<T>(v, open); }).find("closed") != std::string::npos);
+    auto flipped = faces;
+    std::reverse(flipped[0].begin(), flipped[0].end());
+    CHECK(message([&] { ConvexPolyhedron<T>(v, flipped); }).find("ConvexPolyhedron") != std::string::npos);
+    auto bad_index = faces;
+    bad_index[1][2] = 99;
+    CHECK(message([&] { ConvexPolyhedron<T>(v, bad_index); }).find("out of range") != std::string::npos);
+    std::vector<Vec3<T>> dented = v;
+    dented[7] = dented[7] * T(0.5);  // pulls a corner in: three faces no longer planar
+    CHECK(message([&] { ConvexPolyhedron<T>(dented, faces); }).find("planar") != std::string::npos);
+    CHECK(message([&] { ConvexPolyhedron<T>({v[0], v[1], v[2]}, faces); }).find("at least 4 vertices") != std::string::npos);
+    // All inside-out faces: the orientation test catches it as non-convex or negative volume.
+    auto inside_out = faces;
+    for (auto& f : inside_out) std::reverse(f.begin(), f.end());
+    CHECK(message([&] { ConvexPolyhedron<T>(v, inside_out); }) != "no error");
+}
