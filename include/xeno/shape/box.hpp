@@ -42,6 +42,9 @@ public:
     T bounding_radius() const { return length(half_extents_); }
     /// A point strictly inside: the centre.
     Vec3<T> interior_point() const { return Vec3<T>::zero(); }
+    /// Half extents of a box centred on interior_point() that lies strictly inside the shape:
+    /// the narrow phase moves its interior point within it toward a much smaller partner.
+    Vec3<T> inner_half_extents() const { return half_extents_ - Vec3<T>::one() * (T(0.1) * min_component(half_extents_)); }
     T volume() const { return T(8) * half_extents_.x * half_extents_.y * half_extents_.z; }
     /// Density 1: I = V/3 · diag(hy² + hz², hx² + hz², hx² + hy²).
     MassProperties<T> unit_mass_properties() const {

@@ -50,6 +50,9 @@ public:
     }
     T bounding_radius() const { return half_height_ + radius_; }
     Vec3<T> interior_point() const { return Vec3<T>::zero(); }
+    /// Half extents of a box centred on interior_point() that lies strictly inside the shape:
+    /// the narrow phase moves its interior point within it toward a much smaller partner.
+    Vec3<T> inner_half_extents() const { return {T(0.5) * radius_, half_height_ + T(0.5) * radius_, T(0.5) * radius_}; }
     T volume() const {
         const T pi = ScalarTraits<T>::pi;
         return pi * radius_ * radius_ * (T(2) * half_height_ + T(4) / T(3) * radius_);

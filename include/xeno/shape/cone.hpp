@@ -45,6 +45,9 @@ public:
     Aabb<T> local_bounds() const { return {{-radius_, base_y(), -radius_}, {radius_, T(0.75) * height_, radius_}}; }
     T bounding_radius() const { return std::max(T(0.75) * height_, std::sqrt(radius_ * radius_ + base_y() * base_y())); }
     Vec3<T> interior_point() const { return Vec3<T>::zero(); }
+    /// Half extents of a box centred on interior_point() that lies strictly inside the shape:
+    /// the narrow phase moves its interior point within it toward a much smaller partner.
+    Vec3<T> inner_half_extents() const { return {T(0.35) * radius_, T(0.2) * height_, T(0.35) * radius_}; }
     T volume() const { return ScalarTraits<T>::pi * radius_ * radius_ * height_ / T(3); }
     /// Density 1, about the centre of mass: Iy = 3/10 V r², Ix = Iz = V (3/20 r² + 3/80 H²).
     MassProperties<T> unit_mass_properties() const {

@@ -85,6 +85,9 @@ public:
     T bounding_radius() const { return radius_; }
     /// The volume centroid: strictly inside even when the local origin is not.
     Vec3<T> interior_point() const { return unit_mass_.center; }
+    /// Half extents of a box centred on interior_point() that lies strictly inside the shape:
+    /// the narrow phase moves its interior point within it toward a much smaller partner.
+    Vec3<T> inner_half_extents() const { return inner_half_extents_; }
     T volume() const { return unit_mass_.mass; }
     /// Mass properties at density 1 (see mass_properties()).
     MassProperties<T> unit_mass_properties() const { return unit_mass_; }
@@ -103,6 +106,7 @@ private:
     Aabb<T> bounds_;
     T radius_{};
     MassProperties<T> unit_mass_;
+    Vec3<T> inner_half_extents_;
 };
 
 template <class T>
@@ -198,6 +202,18 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
     unit_mass_ = detail::polyhedron_unit_density(vertices_, face_indices_, faces_);
     if (!(unit_mass_.mass > tolerance * scale * scale))
         detail::report_invalid(where, "has zero volume; volume (m^3)", static_cast<double>(unit_mass_.mass));
+
+    // The bounding box's shape scaled about the centroid until a corner meets a face plane,
+    // then every side pulled in by a tenth of the smallest: a box strictly inside.
+    const Vec3<T> c = unit_mass_.center, e = bounds_.half_extents();
+    T fit = ScalarTraits<T>::infinity;
+    for (const Face& f : faces_)
+        for (int corner = 0; corner < 8; ++corner) {
+            const Vec3<T> offset{(corner & 1) ? e.x : -e.x, (corner & 2) ? e.y : -e.y, (corner & 4) ? e.z : -e.z};
+            const T reach = dot(f.normal, offset);
+            if (reach > T(0)) fit = std::min(fit, (f.offset - dot(f.normal, c)) / reach);
+        }
+    inner_half_extents_ = e * fit - Vec3<T>::one() * (T(0.1) * fit * min_component(e));
 }
 
 template <class T>

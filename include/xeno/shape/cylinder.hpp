@@ -59,6 +59,9 @@ public:
     Aabb<T> local_bounds() const { return Aabb<T>::from_center(Vec3<T>::zero(), {radius_, half_height_, radius_}); }
     T bounding_radius() const { return std::sqrt(radius_ * radius_ + half_height_ * half_height_); }
     Vec3<T> interior_point() const { return Vec3<T>::zero(); }
+    /// Half extents of a box centred on interior_point() that lies strictly inside the shape:
+    /// the narrow phase moves its interior point within it toward a much smaller partner.
+    Vec3<T> inner_half_extents() const { return {T(0.6) * radius_, T(0.9) * half_height_, T(0.6) * radius_}; }
     T volume() const { return ScalarTraits<T>::pi * radius_ * radius_ * T(2) * half_height_; }
     /// Density 1: Iy = V r²/2, Ix = Iz = V (3r² + H²)/12 with H = 2h.
     MassProperties<T> unit_mass_properties() const {

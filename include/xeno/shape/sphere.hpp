@@ -33,6 +33,9 @@ public:
     Aabb<T> local_bounds() const { return Aabb<T>::from_center(Vec3<T>::zero(), Vec3<T>::one() * radius_); }
     T bounding_radius() const { return radius_; }
     Vec3<T> interior_point() const { return Vec3<T>::zero(); }
+    /// Half extents of a box centred on interior_point() that lies strictly inside the shape:
+    /// the narrow phase moves its interior point within it toward a much smaller partner.
+    Vec3<T> inner_half_extents() const { return Vec3<T>::one() * (T(0.5) * radius_); }
     T volume() const { return T(4) / T(3) * ScalarTraits<T>::pi * radius_ * radius_ * radius_; }
     /// Density 1: I = 2/5 V r².
     MassProperties<T> unit_mass_properties() const {

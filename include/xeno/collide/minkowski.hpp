@@ -1,0 +1,89 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// The Minkowski difference D = A ⊖ B = {a − b} of two placed shapes, evaluated in A's local frame
+// (COLLISION-NOTES.md 6: the relative rotation and offset are computed once per pair, so each
+// support evaluation costs one matrix product for B and none for A, and the numbers stay near the
+// origin even when both bodies are far from it). Each support point keeps its two witnesses, the
+// points of A and of B it came from, so the narrow phase can report a point on each body.
+// With D = A ⊖ B the portal normal at the end of MPR points from A to B (CONVENTIONS.md).
+#pragma once
+
+#include "../math/transform.hpp"
+
+namespace xeno {
+
+/// A point of D = A ⊖ B with its witnesses, all in A's local frame: v = a − b.
+template <class T>
+struct SupportPoint {
+    Vec3<T> v;  ///< metres, on the boundary of D
+    Vec3<T> a;  ///< metres, the point of A
+    Vec3<T> b;  ///< metres, the point of B
+};
+
+/// Shapes A and B placed by rigid transforms, seen from A's local frame.
+template <class A, class B>
+class MinkowskiDifference {
+public:
+    using T = typename A::scalar_type;
+    static_assert(std::is_same_v<T, typename B::scalar_type>, "both shapes must use the same scalar");
+
+    MinkowskiDifference(const A& a, const Transform<T>& pose_a, const B& b, const Transform<T>& pose_b)
+        : a_(a), b_(b), pose_a_(pose_a) {
+        const Quat<T> inv_a = conjugate(pose_a.orientation);
+        rotation_b_ = to_matrix(inv_a * pose_b.orientation);
+        offset_b_ = rotate(inv_a, pose_b.position - pose_a.position);
+    }
+
+    /// Support of D along d (A's frame; d need not be unit): S_A(d) − S_B(−d).
+    SupportPoint<T> support(const Vec3<T>& d) const {
+        const Vec3<T> pa = a_.support(d);
+        const Vec3<T> pb = to_a(b_.support(transposed_transform(rotation_b_, -d)));
+        return {pa - pb, pa, pb};
+    }
+    /// A point strictly inside D: a point inside A minus a point inside B. Normally the centres of
+    /// mass; when one shape is much larger (bounding radii 4:1 or more) its point moves, within a
+    /// box inside it, as close as it can to the smaller shape's centre, so that the ray from v0
+    /// crosses the surface the small shape actually touches instead of leaving through a far side
+    /// (COLLISION-NOTES.md 2, the size-ratio case; Newton issue 3773).
+    SupportPoint<T> interior() const {
+        Vec3<T> pa = a_.interior_point();
+        Vec3<T> pb = to_a(b_.interior_point());
+        const T ra = a_.bounding_radius(), rb = b_.bounding_radius();
+        if (ra > T(4) * rb) {
+            pa = clamp_into(pb, a_.interior_point(), a_.inner_half_extents());
+        } else if (rb > T(4) * ra) {
+            const Vec3<T> pa_in_b = transposed_transform(rotation_b_, pa - offset_b_);
+            pb = to_a(clamp_into(pa_in_b, b_.interior_point(), b_.inner_half_extents()));
+        }
+        return {pa - pb, pa, pb};
+    }
+    /// A point of B's local frame in A's frame.
+    Vec3<T> to_a(const Vec3<T>& p_b) const { return rotation_b_ * p_b + offset_b_; }
+    /// A direction of B's frame in A's frame.
+    Vec3<T> direction_to_a(const Vec3<T>& d_b) const { return rotation_b_ * d_b; }
+    /// A direction of A's frame in B's frame.
+    Vec3<T> direction_to_b(const Vec3<T>& d_a) const { return transposed_transform(rotation_b_, d_a); }
+    /// A point of A's frame in the world.
+    Vec3<T> point_to_world(const Vec3<T>& p) const { return pose_a_.apply(p); }
+    /// A direction of A's frame in the world.
+    Vec3<T> direction_to_world(const Vec3<T>& d) const { return pose_a_.apply_direction(d); }
+    /// Length scale of the pair: the sum of the bounding radii (tolerances are fractions of it).
+    T scale() const { return a_.bounding_radius() + b_.bounding_radius(); }
+
+    const A& shape_a() const { return a_; }
+    const B& shape_b() const { return b_; }
+
+private:
+    static Vec3<T> clamp_into(const Vec3<T>& p, const Vec3<T>& centre, const Vec3<T>& half) {
+        return centre + min(max(p - centre, -half), half);
+    }
+
+    const A& a_;
+    const B& b_;
+    Transform<T> pose_a_;
+    Mat3<T> rotation_b_;  ///< B's local axes in A's frame
+    Vec3<T> offset_b_;    ///< B's origin in A's frame
+};
+
+}  // namespace xeno

@@ -1,0 +1,295 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Minkowski Portal Refinement (XenoCollide): Snethen, "XenoCollide: Complex Collision Made
+// Simple", Game Programming Gems 7 (2008); the seed thesis 2.2.1 and Apêndice A; degenerate cases
+// as catalogued in COLLISION-NOTES.md 1. Templated on the two shape types: every support call is a
+// direct, inlinable call (no virtual dispatch per support evaluation).
+//
+// D = A ⊖ B contains the origin iff A and B overlap. With v0 inside D, the origin is in D iff the
+// ray from v0 through the origin reaches the origin before leaving D.
+//   Phase 0  v0 = interior(A) − interior(B) (centres of mass: inside, whatever the local origins);
+//            when v0 ≈ 0 (centres coincide) it is nudged a tiny step against the axis of least
+//            support, so the ray runs along the likely separating direction.
+//   Phase 1  portal discovery: a triangle (v1, v2, v3) of support points that the ray crosses.
+//   Phase 2  refinement: while the origin is beyond the portal, replace a portal vertex by the
+//            support point v4 along the portal normal, keeping the ray inside the new triangle.
+//            The origin is inside D (hit) once it is on v0's side of a portal. Miss as soon as a
+//            support plane separates the origin (v·n ≤ 0) or the portal reaches the boundary of D
+//            with the origin still outside.
+//   Phase 3  (penetration query) refine until the support plane is within a tolerance of the
+//            portal; the portal's normal is the contact normal (A → B), the depth is the support
+//            distance along it, and the contact points are the barycentric combination of the
+//            portal's witnesses at the projection of the origin onto the portal.
+// Touching without overlap (depth 0) is a miss. Every loop is capped (kMaxIterations); tolerances
+// are fractions of the pair's size; every normalisation is guarded, so finite input gives finite
+// output. A non-finite pose is rejected (InvalidArgument) before the query runs.
+#pragma once
+
+#include "../error.hpp"
+#include "minkowski.hpp"
+
+#include <algorithm>
+#include <utility>
+
+namespace xeno {
+
+/// Result of a penetration query. When hit is false the other fields are meaningless.
+template <class T>
+struct Penetration {
+    bool hit = false;
+    Vec3<T> normal{};   ///< unit, world frame, from A to B
+    Vec3<T> point_a{};  ///< world, on A's surface, inside B (where the centre line leaves A ⊖ B)
+    Vec3<T> point_b{};  ///< world, on B's surface, inside A
+    T depth{};          ///< metres, > 0 when hit; moving B by depth · normal makes them touch
+    int iterations = 0; ///< support evaluations used (instrumentation)
+};
+
+/// True when the shapes overlap by more than touching. Stops as soon as the answer is known.
+template <class A, class B>
+bool mpr_intersect(const A& a, const Transform<typename A::scalar_type>& pose_a, const B& b,
+                   const Transform<typename A::scalar_type>& pose_b);
+
+/// Normal, contact points and depth when the shapes overlap (hit), else hit = false.
+template <class A, class B>
+Penetration<typename A::scalar_type> mpr_penetration(const A& a, const Transform<typename A::scalar_type>& pose_a,
+                                                     const B& b, const Transform<typename A::scalar_type>& pose_b);
+
+namespace detail {
+
+/// Iteration cap for each MPR phase; a polytope pair needs fewer than 10 (COLLISION-NOTES.md 6).
+constexpr int kMprMaxIterations = 64;
+
+template <class T>
+void require_finite_pose(const Transform<T>& pose, const char* where, const char* name) {
+    if (!is_finite(pose.position))
+        report_invalid(where, (std::string(name) + ".position must be finite, x + y + z").c_str(),
+                       static_cast<double>(pose.position.x + pose.position.y + pose.position.z));
+    if (!is_finite(pose.orientation) || !(length_squared(pose.orientation) > T(0)))
+        report_invalid(where, (std::string(name) + ".orientation must be a finite, non-zero quaternion, w").c_str(),
+                       static_cast<double>(pose.orientation.w));
+}
+
+enum class PortalStatus { miss, hit_on_ray, found };
+
+/// Phases 0 and 1. On hit_on_ray the origin lies on the segment v0–v1 and v1 alone is the contact.
+template <class A, class B>
+PortalStatus discover_portal(const MinkowskiDifference<A, B>& md, SupportPoint<typename A::scalar_type> (&v)[4],
+                             int& iterations) {
+    using T = typename A::scalar_type;
+    const T scale = md.scale();
+    const T eps = ScalarTraits<T>::epsilon;
+
+    // Phase 0: the interior point; nudge it off the origin when the centres coincide.
+    v[0] = md.interior();
+    if (length_squared(v[0].v) <= square(T(16) * eps * scale)) {
+        // Aim the ray along the axis of A with the smallest support distance of D: the likely
+        // direction of least penetration.
+        Vec3<T> best_axis = Vec3<T>::unit_x();
+        T best = ScalarTraits<T>::infinity;
+        for (int i = 0; i < 6; ++i) {
+            const Vec3<T> axis = Vec3<T>::axis(i % 3) * (i < 3 ? T(1) : T(-1));
+            const T h = dot(md.support(axis).v, axis);
+            ++iterations;
+            if (h < best) {
+                best = h;
+                best_axis = axis;
+            }
+        }
+        const Vec3<T> nudge = best_axis * (T(1e-5) * scale);
+        v[0].v -= nudge;
+        v[0].a -= nudge;
+    }
+
+    // Phase 1: v1 along the ray from v0 through the origin.
+    v[1] = md.support(-v[0].v);
+    ++iterations;
+    if (dot(v[1].v, v[0].v) >= T(0)) return PortalStatus::miss;  // a support plane separates
+
+    Vec3<T> n = cross(v[1].v, v[0].v);
+    // v1 collinear with the ray: the origin lies on the segment v0–v1 (relative test: |v0 × v1|
+    // against |v0||v1|, so it works at any scale).
+    if (length_squared(n) <= square(T(16) * eps) * length_squared(v[0].v) * length_squared(v[1].v))
+        return PortalStatus::hit_on_ray;
+
+    v[2] = md.support(n);
+    ++iterations;
+    if (dot(v[2].v, n) <= T(0)) return PortalStatus::miss;
+
+    n = cross(v[1].v - v[0].v, v[2].v - v[0].v);
+    if (dot(n, v[0].v) > T(0)) {  // orient so the origin is on the + side
+        std::swap(v[1], v[2]);
+        n = -n;
+    }
+    for (int k = 0; k < kMprMaxIterations; ++k) {
+        v[3] = md.support(n);
+        ++iterations;
+        if (dot(v[3].v, n) <= T(0)) return PortalStatus::miss;
+        // Origin outside the plane (v0, v1, v3): drop v2.
+        if (dot(cross(v[1].v, v[3].v), v[0].v) < T(0)) {
+            v[2] = v[3];
+            n = cross(v[1].v - v[0].v, v[3].v - v[0].v);
+            continue;
+        }
+        // Origin outside the plane (v0, v3, v2): drop v1.
+        if (dot(cross(v[3].v, v[2].v), v[0].v) < T(0)) {
+            v[1] = v[3];
+            n = cross(v[3].v - v[0].v, v[2].v - v[0].v);
+            continue;
+        }
+        return PortalStatus::found;
+    }
+    return PortalStatus::miss;  // cap reached: a flat D that never yields a portal
+}
+
+/// Replaces one portal vertex by v4 so that the ray v0 → origin still crosses the portal.
+template <class T>
+void choose_new_portal(SupportPoint<T> (&v)[4], const SupportPoint<T>& v4) {
+    const Vec3<T> c = cross(v4.v, v[0].v);
+    if (dot(v[1].v, c) > T(0)) {
+        if (dot(v[2].v, c) > T(0)) v[1] = v4;
+        else v[3] = v4;
+    } else {
+        if (dot(v[3].v, c) > T(0)) v[2] = v4;
+        else v[1] = v4;
+    }
+}
+
+/// The contact from a converged portal (v1, v2, v3) with unit normal n (A's frame). The points
+/// are where the centre line leaves D; their difference is along that line, not exactly along n.
+template <class A, class B>
+Penetration<typename A::scalar_type> contact_from_portal(const MinkowskiDifference<A, B>& md,
+                                                         const SupportPoint<typename A::scalar_type> (&v)[4],
+                                                         const Vec3<typename A::scalar_type>& n, typename A::scalar_type depth) {
+    using T = typename A::scalar_type;
+    // Barycentric weights of the point where the ray v0 → origin crosses the portal: for a line
+    // through 0 along v0 they are proportional to the triple products below, and MPR keeps that
+    // crossing inside the portal, so they are non-negative up to round-off (clamped). The
+    // witnesses are then the points of A and B whose difference is that crossing point: where the
+    // centre line leaves D, a unique point even when the portal lies on a flat face of D.
+    // (Projecting the origin perpendicularly onto the portal, as some implementations do, can
+    // land outside the triangle on oblique portals and bend the points off the contact.)
+    T w1 = triple(v[0].v, v[2].v, v[3].v);
+    T w2 = triple(v[0].v, v[3].v, v[1].v);
+    T w3 = triple(v[0].v, v[1].v, v[2].v);
+    if (w1 + w2 + w3 < T(0)) {
+        w1 = -w1;
+        w2 = -w2;
+        w3 = -w3;
+    }
+    w1 = std::max(w1, T(0));
+    w2 = std::max(w2, T(0));
+    w3 = std::max(w3, T(0));
+    const T sum = w1 + w2 + w3;
+    Vec3<T> pa, pb;
+    if (sum > T(0)) {
+        pa = (v[1].a * w1 + v[2].a * w2 + v[3].a * w3) / sum;
+        pb = (v[1].b * w1 + v[2].b * w2 + v[3].b * w3) / sum;
+    } else {  // a sliver portal: its vertices are within round-off of each other
+        pa = v[1].a;
+        pb = v[1].b;
+    }
+    Penetration<T> out;
+    out.hit = true;
+    out.normal = md.direction_to_world(n);
+    out.point_a = md.point_to_world(pa);
+    out.point_b = md.point_to_world(pb);
+    out.depth = depth;
+    return out;
+}
+
+/// Phases 2 and 3; with stop_at_hit, returns as soon as the origin is known to be inside.
+template <class A, class B>
+Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bool stop_at_hit) {
+    using T = typename A::scalar_type;
+    Penetration<T> result;
+    SupportPoint<T> v[4];
+    int iterations = 0;
+    const PortalStatus status = discover_portal(md, v, iterations);
+    if (status == PortalStatus::miss) {
+        result.iterations = iterations;
+        return result;
+    }
+    if (status == PortalStatus::hit_on_ray) {
+        // The support along the ray is the contact: normal along the ray, exact depth for it.
+        const Vec3<T> n = normalized_or(-v[0].v, Vec3<T>::unit_y());
+        const T depth = dot(v[1].v, n);
+        if (!(depth > T(0))) {
+            result.iterations = iterations;
+            return result;
+        }
+        SupportPoint<T> on_ray[4] = {v[0], v[1], v[1], v[1]};
+        result = contact_from_portal(md, on_ray, n, depth);
+        result.iterations = iterations;
+        return result;
+    }
+
+    const T scale = md.scale();
+    const T tolerance = std::max(ScalarTraits<T>::geometric_tolerance, T(64) * ScalarTraits<T>::epsilon) * scale;
+    const T tiny_normal_sq = square(T(16) * ScalarTraits<T>::epsilon * scale * scale);
+    bool hit = false;
+    Vec3<T> last_good_n{};
+    for (int k = 0; k < kMprMaxIterations; ++k) {
+        const Vec3<T> n = cross(v[2].v - v[1].v, v[3].v - v[1].v);
+        const T n_sq = length_squared(n);
+        if (!(n_sq > tiny_normal_sq)) break;  // the portal collapsed to a segment or a point
+        const Vec3<T> n_unit = n / std::sqrt(n_sq);
+        last_good_n = n_unit;
+        if (!hit && dot(n_unit, v[1].v) > T(0)) {  // origin strictly inside the tetrahedron
+            hit = true;
+            if (stop_at_hit) break;
+        }
+        const SupportPoint<T> v4 = md.support(n_unit);
+        ++iterations;
+        const T support_distance = dot(v4.v, n_unit);
+        if (!hit && !(support_distance > T(0))) break;  // a support plane separates the origin
+        // Converged: the support plane is within tolerance of the portal (all three vertices,
+        // which are equal in exact arithmetic, as libccd does for safety in float).
+        const T progress = std::min({dot(v4.v - v[1].v, n_unit), dot(v4.v - v[2].v, n_unit), dot(v4.v - v[3].v, n_unit)});
+        if (progress <= tolerance) {
+            if (hit) {
+                result = contact_from_portal(md, v, n_unit, std::max(support_distance, T(0)));
+                result.hit = support_distance > T(0);
+            }
+            result.iterations = iterations;
+            return result;
+        }
+        choose_new_portal(v, v4);
+    }
+    // Stopped early (boolean hit), cap reached, or a collapsed portal: report the last good portal
+    // if the origin was found inside, else a miss.
+    if (hit) {
+        if (stop_at_hit) {
+            result.hit = true;
+        } else {
+            const T depth = dot(v[1].v, last_good_n);
+            result = contact_from_portal(md, v, last_good_n, std::max(depth, T(0)));
+            result.hit = depth > T(0);
+        }
+    }
+    result.iterations = iterations;
+    return result;
+}
+
+}  // namespace detail
+
+template <class A, class B>
+bool mpr_intersect(const A& a, const Transform<typename A::scalar_type>& pose_a, const B& b,
+                   const Transform<typename A::scalar_type>& pose_b) {
+    detail::require_finite_pose(pose_a, "mpr_intersect", "pose_a");
+    detail::require_finite_pose(pose_b, "mpr_intersect", "pose_b");
+    return detail::mpr(MinkowskiDifference<A, B>(a, pose_a, b, pose_b), true).hit;
+}
+
+template <class A, class B>
+Penetration<typename A::scalar_type> mpr_penetration(const A& a, const Transform<typename A::scalar_type>& pose_a,
+                                                     const B& b, const Transform<typename A::scalar_type>& pose_b) {
+    detail::require_finite_pose(pose_a, "mpr_penetration", "pose_a");
+    detail::require_finite_pose(pose_b, "mpr_penetration", "pose_b");
+    return detail::mpr(MinkowskiDifference<A, B>(a, pose_a, b, pose_b), false);
+}
+
+namespace f32 { using Penetration = xeno::Penetration<float>; }
+namespace f64 { using Penetration = xeno::Penetration<double>; }
+
+}  // namespace xeno
