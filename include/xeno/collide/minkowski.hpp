@@ -28,8 +28,10 @@ public:
     using T = typename A::scalar_type;
     static_assert(std::is_same_v<T, typename B::scalar_type>, "both shapes must use the same scalar");
 
-    MinkowskiDifference(const A& a, const Transform<T>& pose_a, const B& b, const Transform<T>& pose_b)
-        : a_(a), b_(b), pose_a_(pose_a) {
+    /// margin (metres, >= 0) inflates A by a sphere of that radius, so that pairs closer than the
+    /// margin overlap: the world uses it for speculative contacts (COLLISION-NOTES.md 7).
+    MinkowskiDifference(const A& a, const Transform<T>& pose_a, const B& b, const Transform<T>& pose_b, T margin = T(0))
+        : a_(a), b_(b), pose_a_(pose_a), margin_(margin) {
         const Quat<T> inv_a = conjugate(pose_a.orientation);
         rotation_b_ = to_matrix(inv_a * pose_b.orientation);
         offset_b_ = rotate(inv_a, pose_b.position - pose_a.position);
@@ -37,7 +39,8 @@ public:
 
     /// Support of D along d (A's frame; d need not be unit): S_A(d) − S_B(−d).
     SupportPoint<T> support(const Vec3<T>& d) const {
-        const Vec3<T> pa = a_.support(d);
+        Vec3<T> pa = a_.support(d);
+        if (margin_ > T(0)) pa += normalized_or(d, Vec3<T>::unit_y()) * margin_;
         const Vec3<T> pb = to_a(b_.support(transposed_transform(rotation_b_, -d)));
         return {pa - pb, pa, pb};
     }
@@ -69,7 +72,8 @@ public:
     /// A direction of A's frame in the world.
     Vec3<T> direction_to_world(const Vec3<T>& d) const { return pose_a_.apply_direction(d); }
     /// Length scale of the pair: the sum of the bounding radii (tolerances are fractions of it).
-    T scale() const { return a_.bounding_radius() + b_.bounding_radius(); }
+    T scale() const { return a_.bounding_radius() + b_.bounding_radius() + margin_; }
+    T margin() const { return margin_; }
 
     const A& shape_a() const { return a_; }
     const B& shape_b() const { return b_; }
@@ -82,6 +86,7 @@ private:
     const A& a_;
     const B& b_;
     Transform<T> pose_a_;
+    T margin_;
     Mat3<T> rotation_b_;  ///< B's local axes in A's frame
     Vec3<T> offset_b_;    ///< B's origin in A's frame
 };

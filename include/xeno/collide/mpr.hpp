@@ -155,13 +155,10 @@ void choose_new_portal(SupportPoint<T> (&v)[4], const SupportPoint<T>& v4) {
     }
 }
 
-/// The contact from a converged portal (v1, v2, v3) with unit normal n (A's frame). The points
+/// The contact, in A's frame, from a converged portal (v1, v2, v3) with unit normal n. The points
 /// are where the centre line leaves D; their difference is along that line, not exactly along n.
-template <class A, class B>
-Penetration<typename A::scalar_type> contact_from_portal(const MinkowskiDifference<A, B>& md,
-                                                         const SupportPoint<typename A::scalar_type> (&v)[4],
-                                                         const Vec3<typename A::scalar_type>& n, typename A::scalar_type depth) {
-    using T = typename A::scalar_type;
+template <class T>
+Penetration<T> contact_from_portal(const SupportPoint<T> (&v)[4], const Vec3<T>& n, T depth) {
     // Barycentric weights of the point where the ray v0 → origin crosses the portal: for a line
     // through 0 along v0 they are proportional to the triple products below, and MPR keeps that
     // crossing inside the portal, so they are non-negative up to round-off (clamped). The
@@ -191,14 +188,15 @@ Penetration<typename A::scalar_type> contact_from_portal(const MinkowskiDifferen
     }
     Penetration<T> out;
     out.hit = true;
-    out.normal = md.direction_to_world(n);
-    out.point_a = md.point_to_world(pa);
-    out.point_b = md.point_to_world(pb);
+    out.normal = n;
+    out.point_a = pa;
+    out.point_b = pb;
     out.depth = depth;
     return out;
 }
 
-/// Phases 2 and 3; with stop_at_hit, returns as soon as the origin is known to be inside.
+/// Phases 2 and 3; with stop_at_hit, returns as soon as the origin is known to be inside. The
+/// result is in A's local frame.
 template <class A, class B>
 Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bool stop_at_hit) {
     using T = typename A::scalar_type;
@@ -219,7 +217,7 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
             return result;
         }
         SupportPoint<T> on_ray[4] = {v[0], v[1], v[1], v[1]};
-        result = contact_from_portal(md, on_ray, n, depth);
+        result = contact_from_portal(on_ray, n, depth);
         result.iterations = iterations;
         return result;
     }
@@ -248,7 +246,7 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
         const T progress = std::min({dot(v4.v - v[1].v, n_unit), dot(v4.v - v[2].v, n_unit), dot(v4.v - v[3].v, n_unit)});
         if (progress <= tolerance) {
             if (hit) {
-                result = contact_from_portal(md, v, n_unit, std::max(support_distance, T(0)));
+                result = contact_from_portal(v, n_unit, std::max(support_distance, T(0)));
                 result.hit = support_distance > T(0);
             }
             result.iterations = iterations;
@@ -263,7 +261,7 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
             result.hit = true;
         } else {
             const T depth = dot(v[1].v, last_good_n);
-            result = contact_from_portal(md, v, last_good_n, std::max(depth, T(0)));
+            result = contact_from_portal(v, last_good_n, std::max(depth, T(0)));
             result.hit = depth > T(0);
         }
     }
@@ -286,7 +284,13 @@ Penetration<typename A::scalar_type> mpr_penetration(const A& a, const Transform
                                                      const B& b, const Transform<typename A::scalar_type>& pose_b) {
     detail::require_finite_pose(pose_a, "mpr_penetration", "pose_a");
     detail::require_finite_pose(pose_b, "mpr_penetration", "pose_b");
-    return detail::mpr(MinkowskiDifference<A, B>(a, pose_a, b, pose_b), false);
+    Penetration<typename A::scalar_type> p = detail::mpr(MinkowskiDifference<A, B>(a, pose_a, b, pose_b), false);
+    if (p.hit) {
+        p.normal = pose_a.apply_direction(p.normal);
+        p.point_a = pose_a.apply(p.point_a);
+        p.point_b = pose_a.apply(p.point_b);
+    }
+    return p;
 }
 
 namespace f32 { using Penetration = xeno::Penetration<float>; }

@@ -1,0 +1,128 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// The narrow phase as the rest of xeno calls it, for any two Shape<T>: one std::visit per pair
+// selects the MPR instantiation for the two concrete shape types (static dispatch), then
+//   intersect()          the boolean MPR test, stopping at the first portal that holds the origin;
+//   collide()            MPR penetration, then normal refinement: MPR's normal is where the
+//                        centre line leaves A ⊖ B, not the direction of least penetration, and for a
+//                        resting face it is slightly tilted (COLLISION-NOTES.md 4). The supporting
+//                        faces of both shapes along that normal are tried as axes (one support
+//                        call each) and the axis with the smallest depth wins, faces preferred
+//                        within a small slack, so a resting contact gets the exact face normal;
+//   generate_contacts()  the same on shapes inflated by a speculative margin, then a whole
+//                        manifold by face clipping (face_clip.hpp): what the world uses per pair.
+#pragma once
+
+#include "../shape/shape.hpp"
+#include "face_clip.hpp"
+#include "mpr.hpp"
+
+namespace xeno {
+
+/// True when the shapes overlap (touching is not overlapping). Poses must be finite.
+template <class T>
+bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
+    return std::visit([&](const auto& sa, const auto& sb) { return mpr_intersect(sa, pose_a, sb, pose_b); }, a, b);
+}
+
+namespace detail {
+
+/// Tries the supporting faces of A along n and of B along −n as contact normals; keeps the one with
+/// the least depth h (faces win ties within `slack`). n is A-frame, unit; h is D's support distance
+/// along n minus the margin (the true overlap along n).
+template <class A, class B>
+void refine_normal(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_type>& n, typename A::scalar_type& h) {
+    using T = typename A::scalar_type;
+    const T slack = T(1e-4) * md.scale();
+    auto depth_along = [&](const Vec3<T>& axis) { return dot(md.support(axis).v, axis) - md.margin(); };
+    const Vec3<T> mpr_normal = n;
+    bool have_face = false;
+    const SupportFace<T> face_a = md.shape_a().support_face(mpr_normal);
+    if (face_a.count >= 3) {
+        const T h_face = depth_along(face_a.normal);
+        if (h_face <= h + slack) {
+            n = face_a.normal;
+            h = h_face;
+            have_face = true;
+        }
+    }
+    const SupportFace<T> face_b = md.shape_b().support_face(md.direction_to_b(-mpr_normal));
+    if (face_b.count >= 3) {
+        const Vec3<T> axis = -md.direction_to_a(face_b.normal);
+        const T h_face = depth_along(axis);
+        // B's face replaces A's only when clearly better, so the choice does not flicker.
+        if (have_face ? h_face < h - slack : h_face <= h + slack) {
+            n = axis;
+            h = h_face;
+        }
+    }
+}
+
+/// MPR + refinement on a Minkowski difference (possibly inflated by a margin), all in A's frame.
+/// On a hit gives the normal, the overlap h along it (h > −margin means within reach) and
+/// single-contact points placed at the centre line's exit, h apart along n.
+template <class A, class B>
+bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_type>& n, typename A::scalar_type& h,
+                     Vec3<typename A::scalar_type>& point_a, Vec3<typename A::scalar_type>& point_b) {
+    using T = typename A::scalar_type;
+    const Penetration<T> p = mpr(md, false);
+    if (!p.hit) return false;
+    n = p.normal;
+    h = p.depth - md.margin();
+    refine_normal(md, n, h);
+    if (!(h > -md.margin())) return false;
+    // Remove the margin's inflation from A's witness, then place the points h apart along n.
+    const Vec3<T> middle = (p.point_a - p.normal * md.margin() + p.point_b) * T(0.5);
+    point_a = middle + n * (T(0.5) * h);
+    point_b = middle - n * (T(0.5) * h);
+    return true;
+}
+
+}  // namespace detail
+
+/// Penetration of two shapes with the refined normal: hit, unit normal A → B (world), the overlap
+/// depth along it (> 0) and a point on each body. Poses must be finite (InvalidArgument).
+template <class T>
+Penetration<T> collide(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
+    detail::require_finite_pose(pose_a, "collide", "pose_a");
+    detail::require_finite_pose(pose_b, "collide", "pose_b");
+    return std::visit(
+        [&](const auto& sa, const auto& sb) {
+            using SA = std::decay_t<decltype(sa)>;
+            using SB = std::decay_t<decltype(sb)>;
+            const MinkowskiDifference<SA, SB> md(sa, pose_a, sb, pose_b);
+            Penetration<T> out;
+            Vec3<T> n, pa, pb;
+            T h;
+            if (!detail::refined_contact(md, n, h, pa, pb) || !(h > T(0))) return out;
+            out.hit = true;
+            out.normal = pose_a.apply_direction(n);
+            out.depth = h;
+            out.point_a = pose_a.apply(pa);
+            out.point_b = pose_a.apply(pb);
+            return out;
+        },
+        a, b);
+}
+
+/// The contact manifold the world uses: up to four points with one normal (A → B), including
+/// speculative points up to `margin` metres apart. count == 0 when the shapes are farther apart.
+/// Poses are assumed finite (the world checks them at the door).
+template <class T>
+ContactManifold<T> generate_contacts(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b,
+                                     const Transform<T>& pose_b, T margin) {
+    return std::visit(
+        [&](const auto& sa, const auto& sb) {
+            using SA = std::decay_t<decltype(sa)>;
+            using SB = std::decay_t<decltype(sb)>;
+            const MinkowskiDifference<SA, SB> md(sa, pose_a, sb, pose_b, margin);
+            Vec3<T> n, pa, pb;
+            T h;
+            if (!detail::refined_contact(md, n, h, pa, pb)) return ContactManifold<T>{};
+            return build_manifold(md, n, pa, pb, h, margin);
+        },
+        a, b);
+}
+
+}  // namespace xeno

@@ -1,0 +1,177 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// The narrow phase as the world calls it: normal refinement and whole manifolds by clipping.
+#include "support/approx.hpp"
+
+#include "scenes/random.hpp"
+
+#include <xeno/collide/collide.hpp>
+#include <xeno/collide/sat.hpp>
+#include <xeno/shape/polyhedra.hpp>
+
+#include <algorithm>
+#include <vector>
+
+using namespace xeno;
+using xeno::test::near;
+
+namespace {
+template <class T>
+Transform<T> at(T x, T y, T z, const Quat<T>& q = Quat<T>::identity()) {
+    return {{x, y, z}, q};
+}
+template <class T>
+T quantile(std::vector<T> v, double q) {
+    std::sort(v.begin(), v.end());
+    return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("refinement snaps a slightly tilted resting contact to the face normal", T, float, double) {
+    const Box<T> cube_box(T(0.5), T(0.5), T(0.5)), slab_box(T(3), T(0.5), T(3));
+    const Shape<T> cube = cube_box, slab = slab_box;
+    scenes::Random rng(31);
+    for (int k = 0; k < 200; ++k) {
+        const Quat<T> tilt = Quat<T>::from_axis_angle(rng.direction<T>(), rng.uniform(T(-0.01), T(0.01)));
+        const Transform<T> tb{{rng.uniform(T(-2), T(2)), T(0.995), rng.uniform(T(-2), T(2))}, tilt};
+        const Penetration<T> raw = mpr_penetration(slab_box, at(T(0), T(0), T(0)), cube_box, tb);
+        const Penetration<T> p = collide(slab, at(T(0), T(0), T(0)), cube, tb);
+        REQUIRE(p.hit);
+        REQUIRE(raw.hit);
+        CHECK(p.normal == Vec3<T>::unit_y());  // exactly the face normal
+        CHECK(p.depth <= raw.depth + T(1e-6));
+        const SeparatingAxis<T> exact = separating_axis(slab_box, at(T(0), T(0), T(0)), cube_box, tb);
+        CHECK(near(p.depth, exact.depth, T(1e-5)));
+    }
+}
+
+TEST_CASE_TEMPLATE("refined depth is never below the exact minimum and is closer to it than MPR's", T, float, double) {
+    scenes::Random rng(32);
+    const Box<T> a(T(0.5), T(0.5), T(0.5));
+    const Box<T> b(T(0.8), T(0.3), T(0.5));
+    const Shape<T> sa = a, sb = b;
+    std::vector<T> mpr_ratio, refined_ratio;
+    const T eps = std::is_same_v<T, float> ? T(1e-4) : T(1e-9);
+    for (int k = 0; k < 4000; ++k) {
+        const Transform<T> ta{Vec3<T>::zero(), rng.rotation<T>()};
+        const Transform<T> tb{rng.in_box(Vec3<T>{T(1.1), T(1.1), T(1.1)}), rng.rotation<T>()};
+        const SeparatingAxis<T> exact = separating_axis(a, ta, b, tb);
+        if (exact.depth < T(1e-3)) continue;
+        const Penetration<T> raw = mpr_penetration(a, ta, b, tb);
+        const Penetration<T> p = collide(sa, ta, sb, tb);
+        REQUIRE(raw.hit);
+        REQUIRE(p.hit);
+        CHECK(p.depth >= exact.depth - eps);
+        CHECK(p.depth <= raw.depth + T(1e-4) * T(2.5));  // faces win within a slack of 1e-4 of the size
+        mpr_ratio.push_back(raw.depth / exact.depth);
+        refined_ratio.push_back(p.depth / exact.depth);
+    }
+    REQUIRE(mpr_ratio.size() > 1000);
+    MESSAGE("depth / exact minimum, MPR:     median " << quantile(mpr_ratio, 0.5) << " p90 " << quantile(mpr_ratio, 0.9)
+            << " p99 " << quantile(mpr_ratio, 0.99) << " max " << quantile(mpr_ratio, 1.0));
+    MESSAGE("depth / exact minimum, refined: median " << quantile(refined_ratio, 0.5) << " p90 " << quantile(refined_ratio, 0.9)
+            << " p99 " << quantile(refined_ratio, 0.99) << " max " << quantile(refined_ratio, 1.0));
+    CHECK(quantile(refined_ratio, 0.9) <= quantile(mpr_ratio, 0.9));
+    CHECK(quantile(refined_ratio, 0.5) < T(1.001));
+}
+
+TEST_CASE_TEMPLATE("a box resting on a box gets four points at once", T, float, double) {
+    const Shape<T> cube = Box<T>(T(0.5), T(0.5), T(0.5));
+    const ContactManifold<T> m = generate_contacts(cube, at(T(0), T(0), T(0)), cube, at(T(0), T(0.99), T(0)), T(0.02));
+    REQUIRE(m.count == 4);
+    CHECK(m.normal == Vec3<T>::unit_y());
+    for (int i = 0; i < 4; ++i) {
+        CHECK(near(m.points[i].depth, T(0.01), T(1e-5)));
+        CHECK(near(std::abs(m.points[i].point_a.x), T(0.5), T(1e-5)));
+        CHECK(near(std::abs(m.points[i].point_a.z), T(0.5), T(1e-5)));
+        CHECK(near(m.points[i].point_a.y, T(0.5), T(1e-5)));
+        CHECK(near(m.points[i].point_b.y, T(0.49), T(1e-5)));
+    }
+    // Offset and turned: the contact patch is the overlap of the two squares, clipped.
+    const ContactManifold<T> o = generate_contacts(cube, at(T(0), T(0), T(0)), cube,
+                                                   at(T(0.6), T(0.98), T(0), Quat<T>::from_axis_angle(Vec3<T>::unit_y(), T(0.3))), T(0.02));
+    REQUIRE(o.count == 4);
+    for (int i = 0; i < 4; ++i) {
+        CHECK(near(o.points[i].depth, T(0.02), T(1e-5)));
+        CHECK(o.points[i].point_a.x <= T(0.5) + T(1e-5));  // within A's top face
+        CHECK(o.points[i].point_a.x >= T(0.6) - T(0.5) * (std::cos(T(0.3)) + std::sin(T(0.3))) - T(1e-5));
+    }
+}
+
+TEST_CASE_TEMPLATE("speculative contacts report the gap as negative depth within the margin only", T, float, double) {
+    const Shape<T> cube = Box<T>(T(0.5), T(0.5), T(0.5));
+    const ContactManifold<T> near_gap = generate_contacts(cube, at(T(0), T(0), T(0)), cube, at(T(0.1), T(1.01), T(0)), T(0.02));
+    REQUIRE(near_gap.count == 4);
+    CHECK(near(near_gap.normal, Vec3<T>::unit_y()));
+    for (int i = 0; i < 4; ++i) CHECK(near(near_gap.points[i].depth, T(-0.01), T(1e-4)));
+    CHECK(generate_contacts(cube, at(T(0), T(0), T(0)), cube, at(T(0.1), T(1.03), T(0)), T(0.02)).count == 0);
+    CHECK(generate_contacts(cube, at(T(0), T(0), T(0)), cube, at(T(0.1), T(1.01), T(0)), T(0)).count == 0);
+}
+
+TEST_CASE_TEMPLATE("round and flat shapes on a box get the manifold their shape allows", T, float, double) {
+    const Shape<T> ground = Box<T>(T(5), T(0.5), T(5));
+    const Transform<T> origin = at(T(0), T(0), T(0));
+    // Sphere: one point under its centre.
+    const ContactManifold<T> s = generate_contacts(ground, origin, Shape<T>(Sphere<T>(T(0.5))), at(T(1), T(0.99), T(2)), T(0.02));
+    REQUIRE(s.count == 1);
+    CHECK(near(s.points[0].depth, T(0.01), T(1e-3)));
+    CHECK(near(s.points[0].point_b, Vec3<T>{T(1), T(0.49), T(2)}, T(1e-3)));
+    // Cylinder standing on its cap: four points on the rim.
+    const ContactManifold<T> c = generate_contacts(ground, origin, Shape<T>(Cylinder<T>(T(0.4), T(0.5))), at(T(0), T(0.99), T(0)), T(0.02));
+    REQUIRE(c.count == 4);
+    for (int i = 0; i < 4; ++i) {
+        CHECK(near(c.points[i].depth, T(0.01), T(1e-4)));
+        CHECK(near(length(Vec3<T>{c.points[i].point_b.x, T(0), c.points[i].point_b.z}), T(0.4), T(1e-4)));
+    }
+    // Capsule lying flat: two points at the segment's ends.
+    const Quat<T> flat = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), ScalarTraits<T>::pi / 2);
+    const ContactManifold<T> k = generate_contacts(ground, origin, Shape<T>(Capsule<T>(T(0.3), T(0.6))), at(T(0), T(0.79), T(0), flat), T(0.02));
+    REQUIRE(k.count == 2);
+    CHECK(near(std::abs(k.points[0].point_b.x), T(0.6), T(1e-3)));
+    CHECK(near(std::abs(k.points[1].point_b.x), T(0.6), T(1e-3)));
+    CHECK(near(k.points[0].depth, T(0.01), T(1e-3)));
+    // Cylinder lying on its side: a line contact, two points.
+    const ContactManifold<T> side = generate_contacts(ground, origin, Shape<T>(Cylinder<T>(T(0.4), T(0.5))), at(T(0), T(0.89), T(0), flat), T(0.02));
+    CHECK(side.count == 2);
+    // Cone on its base: four rim points.
+    const ContactManifold<T> cone = generate_contacts(ground, origin, Shape<T>(Cone<T>(T(0.5), T(1))), at(T(0), T(0.74), T(0)), T(0.02));
+    CHECK(cone.count == 4);
+}
+
+TEST_CASE_TEMPLATE("crossed edges give a single contact at the crossing", T, float, double) {
+    const Shape<T> cube = Box<T>(T(0.5), T(0.5), T(0.5));
+    const T reach = std::sqrt(T(0.5));
+    const ContactManifold<T> m = generate_contacts(cube, at(T(0), T(0), T(0), Quat<T>::from_axis_angle(Vec3<T>::unit_z(), ScalarTraits<T>::pi / 4)), cube,
+                                                   at(T(0), T(2) * reach - T(0.02), T(0), Quat<T>::from_axis_angle(Vec3<T>::unit_x(), ScalarTraits<T>::pi / 4)), T(0.02));
+    REQUIRE(m.count == 1);
+    CHECK(near(m.normal, Vec3<T>::unit_y(), T(1e-3)));
+    CHECK(near(m.points[0].depth, T(0.02), T(1e-3)));
+    CHECK(near(m.points[0].point_a, Vec3<T>{T(0), reach, T(0)}, T(1e-2)));
+}
+
+TEST_CASE_TEMPLATE("manifolds from random pairs are finite, unit-normal and never deeper than the refined depth", T, float, double) {
+    scenes::Random rng(33);
+    const Shape<T> shapes[] = {Box<T>(T(0.5), T(0.3), T(0.7)), Sphere<T>(T(0.4)), Capsule<T>(T(0.25), T(0.5)),
+                               Cylinder<T>(T(0.4), T(0.4)), Cone<T>(T(0.5), T(1)), make_regular_prism(5, T(0.5), T(0.4))};
+    int contacts = 0;
+    for (int k = 0; k < 4000; ++k) {
+        const Shape<T>& a = shapes[rng.index(6)];
+        const Shape<T>& b = shapes[rng.index(6)];
+        const Transform<T> ta{rng.in_box(Vec3<T>{T(0.7), T(0.7), T(0.7)}), rng.rotation<T>()};
+        const Transform<T> tb{rng.in_box(Vec3<T>{T(0.7), T(0.7), T(0.7)}), rng.rotation<T>()};
+        const ContactManifold<T> m = generate_contacts(a, ta, b, tb, T(0.02));
+        CHECK(m.count >= 0);
+        CHECK(m.count <= 4);
+        if (m.count == 0) continue;
+        ++contacts;
+        CHECK(near(length(m.normal), T(1), T(1e-4)));
+        for (int i = 0; i < m.count; ++i) {
+            CHECK(is_finite(m.points[i].point_a));
+            CHECK(is_finite(m.points[i].point_b));
+            CHECK(std::isfinite(m.points[i].depth));
+            CHECK(m.points[i].depth >= T(-0.02) - T(1e-4));
+        }
+    }
+    CHECK(contacts > 2000);
+}
