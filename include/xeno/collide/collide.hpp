@@ -38,18 +38,16 @@ void refine_normal(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_
     auto depth_along = [&](const Vec3<T>& axis) { return dot(md.support(axis).v, axis) - md.margin(); };
     const Vec3<T> mpr_normal = n;
     bool have_face = false;
-    const SupportFace<T> face_a = md.shape_a().support_face(mpr_normal);
-    if (face_a.count >= 3) {
-        const T h_face = depth_along(face_a.normal);
+    if (const std::optional<Vec3<T>> face_a = md.shape_a().flat_normal(mpr_normal)) {
+        const T h_face = depth_along(*face_a);
         if (h_face <= h + slack) {
-            n = face_a.normal;
+            n = *face_a;
             h = h_face;
             have_face = true;
         }
     }
-    const SupportFace<T> face_b = md.shape_b().support_face(md.direction_to_b(-mpr_normal));
-    if (face_b.count >= 3) {
-        const Vec3<T> axis = -md.direction_to_a(face_b.normal);
+    if (const std::optional<Vec3<T>> face_b = md.shape_b().flat_normal(md.direction_to_b(-mpr_normal))) {
+        const Vec3<T> axis = -md.direction_to_a(*face_b);
         const T h_face = depth_along(axis);
         // B's face replaces A's only when clearly better, so the choice does not flicker.
         if (have_face ? h_face < h - slack : h_face <= h + slack) {

@@ -10,15 +10,19 @@
 #pragma once
 
 #include "../math/transform.hpp"
+#include "../shape/convex_polyhedron.hpp"
+
+#include <cstdint>
 
 namespace xeno {
 
-/// A point of D = A ⊖ B with its witnesses, all in A's local frame: v = a − b.
+/// A point of D = A ⊖ B with its witness on A, all in A's local frame. B's witness is a − v; it
+/// is not stored, so the portal vertices MPR shuffles every iteration stay small.
 template <class T>
 struct SupportPoint {
     Vec3<T> v;  ///< metres, on the boundary of D
-    Vec3<T> a;  ///< metres, the point of A
-    Vec3<T> b;  ///< metres, the point of B
+    Vec3<T> a;  ///< metres, the point of A it came from
+    Vec3<T> b() const { return a - v; }  ///< metres, the point of B
 };
 
 /// Shapes A and B placed by rigid transforms, seen from A's local frame.
@@ -39,10 +43,10 @@ public:
 
     /// Support of D along d (A's frame; d need not be unit): S_A(d) − S_B(−d).
     SupportPoint<T> support(const Vec3<T>& d) const {
-        Vec3<T> pa = a_.support(d);
+        Vec3<T> pa = support_of(a_, d, hint_a_);
         if (margin_ > T(0)) pa += normalized_or(d, Vec3<T>::unit_y()) * margin_;
-        const Vec3<T> pb = to_a(b_.support(transposed_transform(rotation_b_, -d)));
-        return {pa - pb, pa, pb};
+        const Vec3<T> pb = to_a(support_of(b_, transposed_transform(rotation_b_, -d), hint_b_));
+        return {pa - pb, pa};
     }
     /// A point strictly inside D: a point inside A minus a point inside B. Normally the centres of
     /// mass; when one shape is much larger (bounding radii 4:1 or more) its point moves, within a
@@ -59,7 +63,7 @@ public:
             const Vec3<T> pa_in_b = transposed_transform(rotation_b_, pa - offset_b_);
             pb = to_a(clamp_into(pa_in_b, b_.interior_point(), b_.inner_half_extents()));
         }
-        return {pa - pb, pa, pb};
+        return {pa - pb, pa};
     }
     /// A point of B's local frame in A's frame.
     Vec3<T> to_a(const Vec3<T>& p_b) const { return rotation_b_ * p_b + offset_b_; }
@@ -79,6 +83,20 @@ public:
     const B& shape_b() const { return b_; }
 
 private:
+    // Polyhedra climb from the vertex of the previous query: successive MPR directions are close,
+    // so each support is a few neighbour checks (thesis 3.4, hill climbing). Other shapes answer
+    // in closed form.
+    template <class S>
+    static Vec3<T> support_of(const S& shape, const Vec3<T>& d, std::uint32_t& hint) {
+        if constexpr (std::is_same_v<S, ConvexPolyhedron<T>>) {
+            hint = shape.support_index_hill_climb(d, hint);
+            return shape.vertices()[hint];
+        } else {
+            (void)hint;
+            return shape.support(d);
+        }
+    }
+
     static Vec3<T> clamp_into(const Vec3<T>& p, const Vec3<T>& centre, const Vec3<T>& half) {
         return centre + min(max(p - centre, -half), half);
     }
@@ -89,6 +107,7 @@ private:
     T margin_;
     Mat3<T> rotation_b_;  ///< B's local axes in A's frame
     Vec3<T> offset_b_;    ///< B's origin in A's frame
+    mutable std::uint32_t hint_a_ = 0, hint_b_ = 0;  ///< last support vertices of polyhedra
 };
 
 }  // namespace xeno

@@ -181,10 +181,10 @@ Penetration<T> contact_from_portal(const SupportPoint<T> (&v)[4], const Vec3<T>&
     Vec3<T> pa, pb;
     if (sum > T(0)) {
         pa = (v[1].a * w1 + v[2].a * w2 + v[3].a * w3) / sum;
-        pb = (v[1].b * w1 + v[2].b * w2 + v[3].b * w3) / sum;
+        pb = (v[1].b() * w1 + v[2].b() * w2 + v[3].b() * w3) / sum;
     } else {  // a sliver portal: its vertices are within round-off of each other
         pa = v[1].a;
-        pb = v[1].b;
+        pb = v[1].b();
     }
     Penetration<T> out;
     out.hit = true;
@@ -227,26 +227,28 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
     const T tiny_normal_sq = square(T(16) * ScalarTraits<T>::epsilon * scale * scale);
     bool hit = false;
     Vec3<T> last_good_n{};
+    // The portal normal n is left unnormalised inside the loop (every test below is homogeneous
+    // in n or compares squares): one square root at the end instead of one per iteration.
     for (int k = 0; k < kMprMaxIterations; ++k) {
         const Vec3<T> n = cross(v[2].v - v[1].v, v[3].v - v[1].v);
         const T n_sq = length_squared(n);
         if (!(n_sq > tiny_normal_sq)) break;  // the portal collapsed to a segment or a point
-        const Vec3<T> n_unit = n / std::sqrt(n_sq);
-        last_good_n = n_unit;
-        if (!hit && dot(n_unit, v[1].v) > T(0)) {  // origin strictly inside the tetrahedron
+        last_good_n = n;
+        if (!hit && dot(n, v[1].v) > T(0)) {  // origin strictly inside the tetrahedron
             hit = true;
             if (stop_at_hit) break;
         }
-        const SupportPoint<T> v4 = md.support(n_unit);
+        const SupportPoint<T> v4 = md.support(n);
         ++iterations;
-        const T support_distance = dot(v4.v, n_unit);
+        const T support_distance = dot(v4.v, n);  // times |n|
         if (!hit && !(support_distance > T(0))) break;  // a support plane separates the origin
         // Converged: the support plane is within tolerance of the portal (all three vertices,
         // which are equal in exact arithmetic, as libccd does for safety in float).
-        const T progress = std::min({dot(v4.v - v[1].v, n_unit), dot(v4.v - v[2].v, n_unit), dot(v4.v - v[3].v, n_unit)});
-        if (progress <= tolerance) {
+        const T progress = std::min(std::min(dot(v4.v - v[1].v, n), dot(v4.v - v[2].v, n)), dot(v4.v - v[3].v, n));
+        if (progress <= T(0) || progress * progress <= tolerance * tolerance * n_sq) {
             if (hit) {
-                result = contact_from_portal(v, n_unit, std::max(support_distance, T(0)));
+                const T inv_length = T(1) / std::sqrt(n_sq);
+                result = contact_from_portal(v, n * inv_length, std::max(support_distance * inv_length, T(0)));
                 result.hit = support_distance > T(0);
             }
             result.iterations = iterations;
@@ -260,8 +262,9 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
         if (stop_at_hit) {
             result.hit = true;
         } else {
-            const T depth = dot(v[1].v, last_good_n);
-            result = contact_from_portal(v, last_good_n, std::max(depth, T(0)));
+            const Vec3<T> n = normalized_or(last_good_n, -v[0].v);
+            const T depth = dot(v[1].v, n);
+            result = contact_from_portal(v, n, std::max(depth, T(0)));
             result.hit = depth > T(0);
         }
     }

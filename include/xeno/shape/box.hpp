@@ -11,6 +11,8 @@
 #include "mass_properties.hpp"
 #include "support_face.hpp"
 
+#include <optional>
+
 namespace xeno {
 
 /// An oriented box; local frame centred on the box, faces perpendicular to the axes.
@@ -37,6 +39,12 @@ public:
     }
     /// The face whose outward normal is most aligned with d: four corners, counter-clockwise.
     SupportFace<T> support_face(const Vec3<T>& d) const;
+    /// The outward normal of support_face(d) when that face is a polygon (3 or more vertices),
+    /// else nothing: the narrow phase tries it as a contact normal without building the face.
+    std::optional<Vec3<T>> flat_normal(const Vec3<T>& d) const {
+        const int axis = max_axis(abs(d));
+        return Vec3<T>::axis(axis) * (d[axis] >= T(0) ? T(1) : T(-1));
+    }
     Aabb<T> local_bounds() const { return {-half_extents_, half_extents_}; }
     /// Radius of the smallest sphere about the centre holding the box: its half diagonal.
     T bounding_radius() const { return length(half_extents_); }

@@ -12,6 +12,8 @@
 #include "mass_properties.hpp"
 #include "support_face.hpp"
 
+#include <optional>
+
 namespace xeno {
 
 /// A capsule along local y, centred on its centre of mass.
@@ -45,6 +47,9 @@ public:
         }
         return face;
     }
+    /// The outward normal of support_face(d) when that face is a polygon (3 or more vertices),
+    /// else nothing: the narrow phase tries it as a contact normal without building the face.
+    std::optional<Vec3<T>> flat_normal(const Vec3<T>&) const { return std::nullopt; }
     Aabb<T> local_bounds() const {
         return Aabb<T>::from_center(Vec3<T>::zero(), Vec3<T>{radius_, half_height_ + radius_, radius_});
     }

@@ -13,6 +13,8 @@
 #include "mass_properties.hpp"
 #include "support_face.hpp"
 
+#include <optional>
+
 namespace xeno {
 
 /// A solid right circular cone along local y, apex up, centred on its centre of mass.
@@ -42,6 +44,12 @@ public:
         return {radius_ * d.x / sigma, base_y(), radius_ * d.z / sigma};
     }
     SupportFace<T> support_face(const Vec3<T>& d) const;
+    /// The outward normal of support_face(d) when that face is a polygon (3 or more vertices),
+    /// else nothing: the narrow phase tries it as a contact normal without building the face.
+    std::optional<Vec3<T>> flat_normal(const Vec3<T>& d) const {
+        if (base_faces(normalized_or(d, Vec3<T>::unit_y()))) return Vec3<T>{T(0), T(-1), T(0)};
+        return std::nullopt;
+    }
     Aabb<T> local_bounds() const { return {{-radius_, base_y(), -radius_}, {radius_, T(0.75) * height_, radius_}}; }
     T bounding_radius() const { return std::max(T(0.75) * height_, std::sqrt(radius_ * radius_ + base_y() * base_y())); }
     Vec3<T> interior_point() const { return Vec3<T>::zero(); }
@@ -60,6 +68,13 @@ private:
     T radius_;     ///< metres, base radius
     T height_;     ///< metres, base to apex
     T sin_alpha_;  ///< sine of the half-angle at the apex
+
+    /// True when the base is better aligned with the unit direction n than the side is.
+    bool base_faces(const Vec3<T>& n) const {
+        const T sigma = std::sqrt(n.x * n.x + n.z * n.z);
+        const T slant = std::sqrt(radius_ * radius_ + height_ * height_);
+        return -n.y >= (height_ * sigma + radius_ * n.y) / slant;
+    }
 };
 
 template <class T>
@@ -68,10 +83,9 @@ SupportFace<T> Cone<T>::support_face(const Vec3<T>& d) const {
     const Vec3<T> n = normalized_or(d, Vec3<T>::unit_y());
     const T sigma = std::sqrt(n.x * n.x + n.z * n.z);
     const T slant = std::sqrt(radius_ * radius_ + height_ * height_);
-    // Alignment of d with the base normal (-y) and with the side normal in d's azimuth plane.
-    const T base_alignment = -n.y;
+    // Alignment of d with the side normal in d's azimuth plane, against the base normal (-y).
     const T side_alignment = (height_ * sigma + radius_ * n.y) / slant;
-    if (base_alignment >= side_alignment) {
+    if (base_faces(n)) {
         face.normal = {T(0), T(-1), T(0)};
         for (int k = 0; k < base_segments; ++k) {
             // Counter-clockwise seen from -y is increasing angle in the (x, z) plane.

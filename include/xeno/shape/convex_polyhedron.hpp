@@ -23,6 +23,8 @@
 #include "mass_properties.hpp"
 #include "support_face.hpp"
 
+#include <optional>
+
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -71,14 +73,19 @@ public:
     }
     /// Linear scan over all vertices (thesis Quadro 14).
     std::uint32_t support_index_scan(const Vec3<T>& d) const;
-    /// Greedy ascent over the vertex graph from vertex 0; exact on a convex polytope.
-    std::uint32_t support_index_hill_climb(const Vec3<T>& d) const;
+    /// Greedy ascent over the vertex graph from vertex `start`; exact on a convex polytope.
+    /// Starting from the previous answer of a nearby direction (as MPR's successive portal
+    /// normals are) makes it a few neighbour checks instead of a scan.
+    std::uint32_t support_index_hill_climb(const Vec3<T>& d, std::uint32_t start = 0) const;
     /// The farthest point along d (local frame).
     Vec3<T> support(const Vec3<T>& d) const { return vertices_[support_index(d)]; }
     /// Among the faces touching the support vertex of d, the one whose normal is most aligned with d.
     SupportFace<T> support_face(const Vec3<T>& d) const;
     /// Index of that face in faces().
     std::uint32_t support_face_index(const Vec3<T>& d) const;
+    /// The outward normal of support_face(d) when that face is a polygon (3 or more vertices),
+    /// else nothing: the narrow phase tries it as a contact normal without building the face.
+    std::optional<Vec3<T>> flat_normal(const Vec3<T>& d) const { return faces_[support_face_index(d)].normal; }
 
     Aabb<T> local_bounds() const { return bounds_; }
     /// Radius about the local origin of a sphere holding every vertex.
@@ -98,6 +105,7 @@ public:
 
 private:
     std::vector<Vec3<T>> vertices_;
+    std::vector<T> xs_, ys_, zs_;  // the vertices again as coordinate arrays for the scan, padded to 4k
     std::vector<std::uint32_t> face_indices_;
     std::vector<Face> faces_;
     std::vector<std::uint32_t> neighbor_offsets_, neighbors_;        // CSR: vertex -> vertices
@@ -124,6 +132,12 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
                                    static_cast<double>(std::isfinite(v.x) ? (std::isfinite(v.y) ? v.z : v.y) : v.x));
         bounds_.merge(v);
         radius_ = std::max(radius_, length(v));
+    }
+    for (std::size_t i = 0; i < (n + 3) / 4 * 4; ++i) {
+        const Vec3<T>& v = vertices_[i < n ? i : 0];
+        xs_.push_back(v.x);
+        ys_.push_back(v.y);
+        zs_.push_back(v.z);
     }
     const T scale = length(bounds_.max - bounds_.min);
     const T tolerance = T(64) * ScalarTraits<T>::geometric_tolerance * scale;
@@ -218,24 +232,36 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
 
 template <class T>
 std::uint32_t ConvexPolyhedron<T>::support_index_scan(const Vec3<T>& d) const {
-    std::uint32_t best = 0;
-    T best_value = dot(vertices_[0], d);
-    for (std::uint32_t i = 1; i < vertices_.size(); ++i) {
-        const T value = dot(vertices_[i], d);
-        if (value > best_value) {
-            best = i;
-            best_value = value;
+    // Four independent running maxima over the coordinate arrays (padded to a multiple of four
+    // with copies of vertex 0): no loop-carried dependency between lanes, so the compiler can
+    // keep them in registers and use conditional moves or vector blends. Ties keep the lowest index.
+    T best[4] = {-ScalarTraits<T>::infinity, -ScalarTraits<T>::infinity, -ScalarTraits<T>::infinity, -ScalarTraits<T>::infinity};
+    std::uint32_t index[4] = {0, 0, 0, 0};
+    const std::size_t padded = xs_.size();
+    for (std::size_t i = 0; i < padded; i += 4) {
+        for (std::size_t lane = 0; lane < 4; ++lane) {
+            const T value = xs_[i + lane] * d.x + ys_[i + lane] * d.y + zs_[i + lane] * d.z;
+            const bool better = value > best[lane];
+            best[lane] = better ? value : best[lane];
+            index[lane] = better ? static_cast<std::uint32_t>(i + lane) : index[lane];
         }
     }
-    return best;
+    std::uint32_t result = index[0];
+    T result_value = best[0];
+    for (std::size_t lane = 1; lane < 4; ++lane)
+        if (best[lane] > result_value || (best[lane] == result_value && index[lane] < result)) {
+            result_value = best[lane];
+            result = index[lane];
+        }
+    return result < vertices_.size() ? result : 0;
 }
 
 template <class T>
-std::uint32_t ConvexPolyhedron<T>::support_index_hill_climb(const Vec3<T>& d) const {
+std::uint32_t ConvexPolyhedron<T>::support_index_hill_climb(const Vec3<T>& d, std::uint32_t start) const {
     // Each move strictly increases the value, so the walk ends; on a convex polytope a vertex
     // with no better neighbour is a global maximum. The cap only guards against a NaN direction.
-    std::uint32_t current = 0;
-    T current_value = dot(vertices_[0], d);
+    std::uint32_t current = start < vertices_.size() ? start : 0;
+    T current_value = dot(vertices_[current], d);
     for (std::size_t steps = 0; steps < vertices_.size(); ++steps) {
         std::uint32_t best = current;
         for (std::uint32_t k = neighbor_offsets_[current]; k < neighbor_offsets_[current + 1]; ++k) {

@@ -12,6 +12,8 @@
 #include "mass_properties.hpp"
 #include "support_face.hpp"
 
+#include <optional>
+
 namespace xeno {
 
 /// A solid circular cylinder along local y, centred on its centre of mass.
@@ -55,6 +57,12 @@ public:
             face.push(side * radius_ - Vec3<T>{T(0), half_height_, T(0)});
         }
         return face;
+    }
+    /// The outward normal of support_face(d) when that face is a polygon (3 or more vertices),
+    /// else nothing: the narrow phase tries it as a contact normal without building the face.
+    std::optional<Vec3<T>> flat_normal(const Vec3<T>& d) const {
+        if (std::abs(d.y) >= std::sqrt(d.x * d.x + d.z * d.z)) return Vec3<T>{T(0), d.y >= T(0) ? T(1) : T(-1), T(0)};
+        return std::nullopt;
     }
     Aabb<T> local_bounds() const { return Aabb<T>::from_center(Vec3<T>::zero(), {radius_, half_height_, radius_}); }
     T bounding_radius() const { return std::sqrt(radius_ * radius_ + half_height_ * half_height_); }

@@ -10,6 +10,8 @@
 #include "mass_properties.hpp"
 #include "support_face.hpp"
 
+#include <optional>
+
 namespace xeno {
 
 /// A sphere centred on its centre of mass.
@@ -30,6 +32,9 @@ public:
         face.push(face.normal * radius_);
         return face;
     }
+    /// The outward normal of support_face(d) when that face is a polygon (3 or more vertices),
+    /// else nothing: the narrow phase tries it as a contact normal without building the face.
+    std::optional<Vec3<T>> flat_normal(const Vec3<T>&) const { return std::nullopt; }
     Aabb<T> local_bounds() const { return Aabb<T>::from_center(Vec3<T>::zero(), Vec3<T>::one() * radius_); }
     T bounding_radius() const { return radius_; }
     Vec3<T> interior_point() const { return Vec3<T>::zero(); }
