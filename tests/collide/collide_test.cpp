@@ -40,7 +40,7 @@ TEST_CASE_TEMPLATE("refinement snaps a slightly tilted resting contact to the fa
         REQUIRE(p.hit);
         REQUIRE(raw.hit);
         CHECK(p.normal == Vec3<T>::unit_y());  // exactly the face normal
-        CHECK(p.depth <= raw.depth + T(1e-6));
+        CHECK(p.depth <= raw.depth + T(1e-3));  // face axes win within a slack
         const SeparatingAxis<T> exact = separating_axis(slab_box, at(T(0), T(0), T(0)), cube_box, tb);
         CHECK(near(p.depth, exact.depth, T(1e-5)));
     }
@@ -63,7 +63,7 @@ TEST_CASE_TEMPLATE("refined depth is never below the exact minimum and is closer
         REQUIRE(raw.hit);
         REQUIRE(p.hit);
         CHECK(p.depth >= exact.depth - eps);
-        CHECK(p.depth <= raw.depth + T(1e-4) * T(2.5));  // faces win within a slack of 1e-4 of the size
+        CHECK(p.depth <= raw.depth + T(1e-3));  // faces win within a slack
         mpr_ratio.push_back(raw.depth / exact.depth);
         refined_ratio.push_back(p.depth / exact.depth);
     }

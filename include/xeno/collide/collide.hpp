@@ -4,7 +4,8 @@
 // The narrow phase as the rest of xeno calls it, for any two Shape<T>: one std::visit per pair
 // selects the MPR instantiation for the two concrete shape types (static dispatch), then
 //   intersect()          the boolean MPR test, stopping at the first portal that holds the origin;
-//   collide()            MPR penetration, then normal refinement: MPR's normal is where the
+//   collide()            MPR penetration (for two boxes: the closed-form separating-axis test of
+//                        box_box.hpp, exact and cheaper), then normal refinement: MPR's normal is where the
 //                        centre line leaves A ⊖ B, not the direction of least penetration, and for a
 //                        resting face it is slightly tilted (COLLISION-NOTES.md 4). The supporting
 //                        faces of both shapes along that normal are tried as axes (one support
@@ -15,6 +16,7 @@
 #pragma once
 
 #include "../shape/shape.hpp"
+#include "box_box.hpp"
 #include "face_clip.hpp"
 #include "mpr.hpp"
 
@@ -38,7 +40,7 @@ void refine_normal(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_
     auto depth_along = [&](const Vec3<T>& axis) { return dot(md.support(axis).v, axis) - md.margin(); };
     const Vec3<T> mpr_normal = n;
     bool have_face = false;
-    if (const std::optional<Vec3<T>> face_a = md.shape_a().flat_normal(mpr_normal)) {
+    if (const std::optional<Vec3<T>> face_a = md.flat_normal_a(mpr_normal)) {
         const T h_face = depth_along(*face_a);
         if (h_face <= h + slack) {
             n = *face_a;
@@ -46,8 +48,8 @@ void refine_normal(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_
             have_face = true;
         }
     }
-    if (const std::optional<Vec3<T>> face_b = md.shape_b().flat_normal(md.direction_to_b(-mpr_normal))) {
-        const Vec3<T> axis = -md.direction_to_a(*face_b);
+    if (const std::optional<Vec3<T>> face_b = md.flat_normal_b(-mpr_normal)) {
+        const Vec3<T> axis = -*face_b;
         const T h_face = depth_along(axis);
         // B's face replaces A's only when clearly better, so the choice does not flicker.
         if (have_face ? h_face < h - slack : h_face <= h + slack) {
@@ -64,6 +66,10 @@ template <class A, class B>
 bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_type>& n, typename A::scalar_type& h,
                      Vec3<typename A::scalar_type>& point_a, Vec3<typename A::scalar_type>& point_b) {
     using T = typename A::scalar_type;
+    if constexpr (std::is_same_v<A, Box<T>> && std::is_same_v<B, Box<T>>) {
+        // Two boxes: the exact separating axis in closed form is cheaper than MPR and exact.
+        return box_box_axis(md, n, h, point_a, point_b) && h > -md.margin();
+    }
     const Penetration<T> p = mpr(md, false);
     if (!p.hit) return false;
     n = p.normal;

@@ -13,6 +13,7 @@
 #include "../shape/convex_polyhedron.hpp"
 
 #include <cstdint>
+#include <optional>
 
 namespace xeno {
 
@@ -48,6 +49,15 @@ public:
         const Vec3<T> pb = to_a(support_of(b_, transposed_transform(rotation_b_, -d), hint_b_));
         return {pa - pb, pa};
     }
+    /// The normal of A's flat supporting face along d (A's frame), if it has one.
+    std::optional<Vec3<T>> flat_normal_a(const Vec3<T>& d) const { return flat_normal_of(a_, d, hint_a_); }
+    /// The normal of B's flat supporting face along d (both in A's frame), if it has one.
+    std::optional<Vec3<T>> flat_normal_b(const Vec3<T>& d) const {
+        const std::optional<Vec3<T>> n = flat_normal_of(b_, direction_to_b(d), hint_b_);
+        if (!n) return std::nullopt;
+        return direction_to_a(*n);
+    }
+
     /// A point strictly inside D: a point inside A minus a point inside B. Normally the centres of
     /// mass; when one shape is much larger (bounding radii 4:1 or more) its point moves, within a
     /// box inside it, as close as it can to the smaller shape's centre, so that the ray from v0
@@ -80,6 +90,8 @@ public:
     T margin() const { return margin_; }
 
     const A& shape_a() const { return a_; }
+    /// B's local axes in A's frame (columns).
+    const Mat3<T>& rotation_b() const { return rotation_b_; }
     const B& shape_b() const { return b_; }
 
 private:
@@ -89,12 +101,20 @@ private:
     template <class S>
     static Vec3<T> support_of(const S& shape, const Vec3<T>& d, std::uint32_t& hint) {
         if constexpr (std::is_same_v<S, ConvexPolyhedron<T>>) {
-            hint = shape.support_index_hill_climb(d, hint);
+            hint = shape.support_index_hill_climb(d, hint == kNoHint ? shape.start_vertex(d) : hint);
             return shape.vertices()[hint];
         } else {
             (void)hint;
             return shape.support(d);
         }
+    }
+
+    template <class S>
+    static std::optional<Vec3<T>> flat_normal_of(const S& shape, const Vec3<T>& d, std::uint32_t hint) {
+        if constexpr (std::is_same_v<S, ConvexPolyhedron<T>>) {
+            if (hint != kNoHint) return shape.faces()[shape.support_face_index(d, hint)].normal;
+        }
+        return shape.flat_normal(d);
     }
 
     static Vec3<T> clamp_into(const Vec3<T>& p, const Vec3<T>& centre, const Vec3<T>& half) {
@@ -107,7 +127,8 @@ private:
     T margin_;
     Mat3<T> rotation_b_;  ///< B's local axes in A's frame
     Vec3<T> offset_b_;    ///< B's origin in A's frame
-    mutable std::uint32_t hint_a_ = 0, hint_b_ = 0;  ///< last support vertices of polyhedra
+    static constexpr std::uint32_t kNoHint = ~std::uint32_t(0);
+    mutable std::uint32_t hint_a_ = kNoHint, hint_b_ = kNoHint;  ///< last support vertices of polyhedra
 };
 
 }  // namespace xeno

@@ -99,7 +99,8 @@ private:
         std::uint32_t edge = none;  // any half-edge of the face
         std::uint32_t count = 0;    // number of vertices
         Vec3<W> normal{}, centroid{};
-        W offset = W(0);            // normal · centroid
+        W offset = W(0);            // normal · centroid: the mean plane, for merging
+        W outer = W(0);             // max of normal · vertex: the outer plane, for points
         W area = W(0);
         bool alive = true, nonconvex = false, queued = false;
         std::vector<std::uint32_t> outside;  // conflict list: points more than ε above the face
@@ -107,8 +108,10 @@ private:
 
     std::uint32_t head(std::uint32_t e) const { return edges_[edges_[e].next].origin; }
     std::uint32_t twin_face(std::uint32_t e) const { return edges_[edges_[e].twin].face; }
-    W distance(std::uint32_t f, const Vec3<W>& p) const { return dot(faces_[f].normal, p) - faces_[f].offset; }
-    W distance(std::uint32_t f, std::uint32_t point) const { return distance(f, points_[point]); }
+    // Height of a point above a face's outer plane: a merged face is planar only to within a few
+    // ε, and a point must not count as outside a face it is a vertex of.
+    W height(std::uint32_t f, std::uint32_t point) const { return dot(faces_[f].normal, points_[point]) - faces_[f].outer; }
+    W mean_distance(std::uint32_t f, const Vec3<W>& p) const { return dot(faces_[f].normal, p) - faces_[f].offset; }
 
     std::uint32_t add_triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
     void link(std::uint32_t e, std::uint32_t f) { edges_[e].twin = f; edges_[f].twin = e; }
@@ -173,6 +176,11 @@ void QuickHullBuilder<W>::update_plane(std::uint32_t f) {
     face.normal = *normal;
     face.area = length(newell) / W(2);
     face.offset = dot(face.normal, face.centroid);
+    face.outer = face.offset;
+    do {
+        face.outer = std::max(face.outer, dot(face.normal, points_[edges_[e].origin]));
+        e = edges_[e].next;
+    } while (e != face.edge);
 }
 
 template <class W>
@@ -190,7 +198,7 @@ void QuickHullBuilder<W>::assign(std::uint32_t point, const std::vector<std::uin
     W best_distance = tolerance_;
     for (std::uint32_t f : candidate_faces) {
         if (!faces_[f].alive) continue;
-        const W d = distance(f, point);
+        const W d = height(f, point);
         if (d > best_distance) {
             best_distance = d;
             best = f;
@@ -205,7 +213,7 @@ std::uint32_t QuickHullBuilder<W>::take_eye(std::uint32_t f) {
     std::size_t best = outside.size();
     W best_distance = tolerance_;
     for (std::size_t k = 0; k < outside.size(); ++k) {
-        const W d = distance(f, outside[k]);
+        const W d = height(f, outside[k]);
         if (d > best_distance) {
             best_distance = d;
             best = k;
@@ -226,6 +234,17 @@ std::uint32_t QuickHullBuilder<W>::take_eye(std::uint32_t f) {
     const std::uint32_t eye = outside[best];
     outside[best] = outside.back();
     outside.pop_back();
+    // A near-duplicate of one of the face's vertices is on the hull already.
+    std::uint32_t e = faces_[f].edge;
+    for (std::uint32_t k = 0; k < faces_[f].count; ++k, e = edges_[e].next) {
+        if (length_squared(points_[eye] - points_[edges_[e].origin]) <= tolerance_ * tolerance_) {
+            if (!outside.empty() && !faces_[f].queued) {
+                faces_[f].queued = true;
+                pending_.push_back(f);
+            }
+            return none;
+        }
+    }
     return eye;
 }
 
@@ -346,7 +365,6 @@ bool QuickHullBuilder<W>::find_horizon(std::uint32_t eye, std::uint32_t eye_face
         std::uint32_t remaining;  // edges of this face still to look across
     };
     std::vector<Frame> stack;
-    const Vec3<W>& p = points_[eye];
     remove_face(eye_face);
     stack.push_back({faces_[eye_face].edge, faces_[eye_face].count});
     const std::size_t cap = 2 * edges_.size() + 8;
@@ -363,7 +381,7 @@ bool QuickHullBuilder<W>::find_horizon(std::uint32_t eye, std::uint32_t eye_face
         const std::uint32_t across = edges_[e].twin;
         const std::uint32_t g = edges_[across].face;
         if (!faces_[g].alive) continue;  // visible, already removed
-        if (distance(g, p) > tolerance_) {
+        if (height(g, eye) > tolerance_) {
             remove_face(g);
             stack.push_back({edges_[across].next, faces_[g].count - 1});
         } else {
@@ -382,8 +400,8 @@ bool QuickHullBuilder<W>::merge_with_neighbour(std::uint32_t f, bool strict) {
     std::uint32_t e = faces_[f].edge;
     for (std::uint32_t k = 0; k < faces_[f].count; ++k, e = edges_[e].next) {
         const std::uint32_t g = twin_face(e);
-        const W g_above_f = distance(f, faces_[g].centroid);
-        const W f_above_g = distance(g, faces_[f].centroid);
+        const W g_above_f = mean_distance(f, faces_[g].centroid);
+        const W f_above_g = mean_distance(g, faces_[f].centroid);
         bool merge = false;
         if (strict) {
             merge = g_above_f > -tolerance_ || f_above_g > -tolerance_;
@@ -443,7 +461,7 @@ void QuickHullBuilder<W>::merge_faces(std::uint32_t e) {
         std::vector<std::uint32_t> moved;
         moved.swap(faces_[dead].outside);
         for (std::uint32_t point : moved) {
-            if (distance(f, point) > tolerance_) add_outside(f, point);
+            if (height(f, point) > tolerance_) add_outside(f, point);
             else unclaimed_.push_back(point);
         }
     }

@@ -69,7 +69,14 @@ public:
 
     /// Index of a vertex farthest along d (ties: any); d need not be unit.
     std::uint32_t support_index(const Vec3<T>& d) const {
-        return vertices_.size() > hill_climb_threshold ? support_index_hill_climb(d) : support_index_scan(d);
+        return vertices_.size() > hill_climb_threshold ? support_index_hill_climb(d, start_vertex(d)) : support_index_scan(d);
+    }
+    /// A good vertex to start climbing from: the extreme vertex of the axis direction (±x, ±y, ±z)
+    /// closest to d, found once at construction.
+    std::uint32_t start_vertex(const Vec3<T>& d) const {
+        const Vec3<T> a = abs(d);
+        const int axis = max_axis(a);
+        return axis_extreme_[static_cast<std::size_t>(2 * axis + (d[axis] >= T(0) ? 0 : 1))];
     }
     /// Linear scan over all vertices (thesis Quadro 14).
     std::uint32_t support_index_scan(const Vec3<T>& d) const;
@@ -81,8 +88,13 @@ public:
     Vec3<T> support(const Vec3<T>& d) const { return vertices_[support_index(d)]; }
     /// Among the faces touching the support vertex of d, the one whose normal is most aligned with d.
     SupportFace<T> support_face(const Vec3<T>& d) const;
-    /// Index of that face in faces().
-    std::uint32_t support_face_index(const Vec3<T>& d) const;
+    /// Index of that face in faces(); `start` seeds the support search (see hill climbing).
+    std::uint32_t support_face_index(const Vec3<T>& d) const { return face_at_vertex(d, support_index(d)); }
+    std::uint32_t support_face_index(const Vec3<T>& d, std::uint32_t start) const {
+        return face_at_vertex(d, support_index_hill_climb(d, start));
+    }
+    /// Among the faces touching vertex v, the one whose normal is most aligned with d.
+    std::uint32_t face_at_vertex(const Vec3<T>& d, std::uint32_t v) const;
     /// The outward normal of support_face(d) when that face is a polygon (3 or more vertices),
     /// else nothing: the narrow phase tries it as a contact normal without building the face.
     std::optional<Vec3<T>> flat_normal(const Vec3<T>& d) const { return faces_[support_face_index(d)].normal; }
@@ -107,6 +119,7 @@ private:
     std::vector<Vec3<T>> vertices_;
     std::vector<T> xs_, ys_, zs_;  // the vertices again as coordinate arrays for the scan, padded to 4k
     std::vector<std::uint32_t> face_indices_;
+    std::uint32_t axis_extreme_[6] = {};  // support vertices of +x, -x, +y, -y, +z, -z
     std::vector<Face> faces_;
     std::vector<std::uint32_t> neighbor_offsets_, neighbors_;        // CSR: vertex -> vertices
     std::vector<std::uint32_t> vertex_face_offsets_, vertex_faces_;  // CSR: vertex -> faces
@@ -132,6 +145,13 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
                                    static_cast<double>(std::isfinite(v.x) ? (std::isfinite(v.y) ? v.z : v.y) : v.x));
         bounds_.merge(v);
         radius_ = std::max(radius_, length(v));
+    }
+    for (int i = 0; i < 6; ++i) {
+        const Vec3<T> axis = Vec3<T>::axis(i / 2) * (i % 2 == 0 ? T(1) : T(-1));
+        std::uint32_t best = 0;
+        for (std::uint32_t k = 1; k < n; ++k)
+            if (dot(vertices_[k], axis) > dot(vertices_[best], axis)) best = k;
+        axis_extreme_[i] = best;
     }
     for (std::size_t i = 0; i < (n + 3) / 4 * 4; ++i) {
         const Vec3<T>& v = vertices_[i < n ? i : 0];
@@ -278,8 +298,7 @@ std::uint32_t ConvexPolyhedron<T>::support_index_hill_climb(const Vec3<T>& d, st
 }
 
 template <class T>
-std::uint32_t ConvexPolyhedron<T>::support_face_index(const Vec3<T>& d) const {
-    const std::uint32_t v = support_index(d);
+std::uint32_t ConvexPolyhedron<T>::face_at_vertex(const Vec3<T>& d, std::uint32_t v) const {
     std::uint32_t best = vertex_faces_[vertex_face_offsets_[v]];
     T best_alignment = dot(faces_[best].normal, d);
     for (std::uint32_t k = vertex_face_offsets_[v] + 1; k < vertex_face_offsets_[v + 1]; ++k) {
