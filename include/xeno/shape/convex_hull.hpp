@@ -7,25 +7,32 @@
 // QuickHull3D (2004) and Gregorius, "Implementing Quickhull" (GDC 2014) do. Points are in metres.
 // Every hull vertex is an input point; points inside, on a face or on the inside of an edge are
 // dropped; coplanar triangles become one polygon face, counter-clockwise seen from outside. The
-// result is re-centred on its centroid (CONVENTIONS.md): input point = polyhedron vertex + shift.
+// result is re-centred on its centroid (CONVENTIONS.md): input point = polyhedron vertex + shift,
+// up to the round-off in T of subtracting and adding the shift.
 //
 // Tolerances scale with the cloud. With d the diagonal of its bounding box, a face is ε = d ×
 // geometric_tolerance thick (1e-5 d in float, 1e-9 d in double): a point less than ε above the hull
-// counts as on it, and two faces whose centroids lie within ε of each other's planes are one face.
-// That is 64 times tighter than ConvexPolyhedron's own check, so merged faces are always accepted.
-// Clouds flatter or thinner than that check (64 ε) are rejected as coplanar or collinear.
+// counts as on it, two faces whose centroids lie within ε of each other's planes are one face, and
+// a sliver narrower than ε is merged into its neighbour. Heights are measured from a face's outer
+// plane (through its highest vertex), so a merged face, planar only to a few ε, never sees one of
+// its own vertices (or a duplicate of one) as outside. ConvexPolyhedron checks planarity and
+// convexity to 64 ε, so merged faces pass with room to spare. Clouds that do not reach 64 ε out
+// of a line or a plane, or whose hull is too flat for ConvexPolyhedron's volume check, are rejected
+// as collinear or coplanar; so are coincident points (all within 4 ulps of their coordinates).
 //
 // Precision. The hull is decided in double for both scalar types, on points moved by the centre of
 // their bounding box. It only chooses input points, so no output value passes through double;
 // deciding it in float would not do: a sliver triangle's normal is off by ~ulp × length / height,
 // enough to see a point far outside as inside and tear the mesh.
 //
-// Faces too small for ConvexPolyhedron<T>. The polyhedron rejects faces of area below
-// 32 × geometric_tolerance × d² (3.2e-4 d² in float): a float hull cannot have more than a few
-// thousand faces. A face below that (with a margin) loses its flattest vertex and the hull is
-// rebuilt from the remaining vertices, so a dense float cloud gives a coarser hull whose dropped
-// vertices stand out of it by about the local curvature times the face size. Double clouds of
-// ordinary shape never need this.
+// Faces too small for ConvexPolyhedron<T>. The polyhedron rejects a face of area at most
+// 32 × geometric_tolerance × d² (3.2e-4 d² in float, 3.2e-8 d² in double), whatever its shape: a
+// float hull cannot have more than a few thousand faces, and a double hull cannot keep a cluster
+// of points 1e-4 d across. Such a face loses the vertex whose removal moves the hull least and
+// the hull is rebuilt from the remaining vertices, until every face passes. The dropped points
+// then stand out of the hull by about the size of the face times the angle between its
+// neighbours: up to 1-2 % of d for a dense float cloud (of 2,000 points on a sphere ~770 stay),
+// 1e-4 d for tight double clusters. Double clouds of ordinary shape never need this.
 #pragma once
 
 #include "../error.hpp"
@@ -51,10 +58,12 @@ struct ConvexHull {
 };
 
 /// The convex hull of points (metres, any order, duplicates allowed), re-centred on its centroid:
-/// original point = polyhedron vertex + shift. Rejects (InvalidArgument, naming make_convex_hull)
-/// fewer than 4 points, a non-finite coordinate (naming the point), coordinates too large to
-/// square in T, and clouds whose points coincide, are collinear or are coplanar within the
-/// tolerance above. Runs in O(n log n) for n points in general position.
+/// original point = polyhedron vertex + shift. Every point lies inside or less than ε outside,
+/// except vertices dropped from faces too small for ConvexPolyhedron<T> (see above). Rejects
+/// (InvalidArgument, naming make_convex_hull) fewer than 4 points, a non-finite coordinate
+/// (naming the point), coordinates too large to square in T, and clouds whose points coincide,
+/// are collinear or are coplanar within the tolerance above. O(n log n) for n points in general
+/// position.
 template <class T>
 ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points);
 
@@ -64,13 +73,15 @@ namespace detail {
 ///
 ///  1. Start from a tetrahedron of four far-apart points; give each other point to the face it is
 ///     farthest above, if more than ε (its conflict list); the rest are inside.
-///  2. While a face has a conflict list: take its farthest point, the eye.
+///  2. While a face has a conflict list: take its farthest point, the eye (unless it duplicates
+///     one of the face's vertices to within ε).
 ///  3. Walk from that face over every face the eye is more than ε above (the visible faces);
 ///     the edges where the walk stops form the horizon, a closed loop.
 ///  4. Delete the visible faces and join the eye to each horizon edge by a new triangle.
-///  5. Merge each new face with a neighbour when either centroid is not at least ε below the
-///     other's plane (coplanar or concave), first judged from the larger face, then from both;
-///     a vertex left between only two faces (on a straight edge) is removed with its edges.
+///  5. Merge each new triangle narrower than ε into the face across its longest edge. Merge each
+///     new face with a neighbour when either centroid is not at least ε below the other's plane
+///     (coplanar or concave), first judged from the larger face, then from both; a vertex left
+///     between only two faces (on a straight edge) is removed with its edges.
 ///  6. Give the deleted faces' conflict points to the new face they are farthest above, or drop
 ///     them as inside.
 ///
@@ -103,6 +114,7 @@ private:
         W outer = W(0);             // max of normal · vertex: the outer plane, for points
         W area = W(0);
         bool alive = true, nonconvex = false, queued = false;
+        bool degenerate = false;    // no reliable plane (narrower than ε): to be merged away
         std::vector<std::uint32_t> outside;  // conflict list: points more than ε above the face
     };
 
@@ -116,6 +128,8 @@ private:
     std::uint32_t add_triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
     void link(std::uint32_t e, std::uint32_t f) { edges_[e].twin = f; edges_[f].twin = e; }
     void update_plane(std::uint32_t f);
+    std::uint32_t longest_edge(std::uint32_t f) const;
+    bool merge_degenerate_faces();
     void add_outside(std::uint32_t f, std::uint32_t point);
     void assign(std::uint32_t point, const std::vector<std::uint32_t>& candidate_faces);
     std::uint32_t take_eye(std::uint32_t f);
@@ -132,8 +146,13 @@ private:
     std::vector<HalfEdge> edges_;
     std::vector<Face> faces_;
     std::vector<std::uint32_t> pending_;  // faces that received conflict points, in order
-    std::vector<std::uint32_t> horizon_, unclaimed_, new_faces_, discarded_, scratch_;
+    std::vector<std::uint32_t> horizon_, unclaimed_, new_faces_, discarded_, scratch_, degenerate_;
     std::vector<std::uint32_t> stamp_;    // per point: last add_point that saw it on the horizon
+    struct HorizonFrame {
+        std::uint32_t edge;       // next edge of this face to look across
+        std::uint32_t remaining;  // edges of this face still to look across
+    };
+    std::vector<HorizonFrame> stack_;     // find_horizon's depth-first walk
     std::uint32_t step_ = 0;
     bool failed_ = false;
 };
@@ -172,15 +191,52 @@ void QuickHullBuilder<W>::update_plane(std::uint32_t f) {
         e = edges_[e].next;
     } while (e != face.edge);
     const std::optional<Vec3<W>> normal = try_normalized(newell);
-    if (!normal) { failed_ = true; return; }
-    face.normal = *normal;
     face.area = length(newell) / W(2);
+    // Narrower than ε (area over longest edge): the eye was in line with a horizon edge, or a
+    // merge left a sliver. Its plane is noise; merge_degenerate_faces() removes it.
+    face.degenerate = !normal || !(face.area <= ScalarTraits<W>::max) ||
+                      !(W(2) * face.area > tolerance_ * length(points_[edges_[longest_edge(f)].origin] - points_[head(longest_edge(f))]));
+    if (face.degenerate) {
+        degenerate_.push_back(f);
+        if (!normal) return;
+    }
+    face.normal = *normal;
     face.offset = dot(face.normal, face.centroid);
     face.outer = face.offset;
     do {
         face.outer = std::max(face.outer, dot(face.normal, points_[edges_[e].origin]));
         e = edges_[e].next;
     } while (e != face.edge);
+}
+
+template <class W>
+std::uint32_t QuickHullBuilder<W>::longest_edge(std::uint32_t f) const {
+    std::uint32_t best = faces_[f].edge, e = best;
+    W best_length = W(-1);
+    for (std::uint32_t k = 0; k < faces_[f].count; ++k, e = edges_[e].next) {
+        const W l = length_squared(points_[head(e)] - points_[edges_[e].origin]);
+        if (l > best_length) {
+            best_length = l;
+            best = e;
+        }
+    }
+    return best;
+}
+
+template <class W>
+bool QuickHullBuilder<W>::merge_degenerate_faces() {
+    // A sliver lies along its longest edge, so the face across that edge holds it in its plane
+    // (to within ε); merging into it changes the hull by less than ε.
+    const std::size_t cap = faces_.size() + 8;
+    for (std::size_t k = 0; k < degenerate_.size(); ++k) {
+        if (k > cap) return false;
+        const std::uint32_t f = degenerate_[k];
+        if (!faces_[f].alive || !faces_[f].degenerate) continue;
+        merge_faces(longest_edge(f));
+        if (failed_) return false;
+    }
+    degenerate_.clear();
+    return true;
 }
 
 template <class W>
@@ -227,8 +283,7 @@ std::uint32_t QuickHullBuilder<W>::take_eye(std::uint32_t f) {
         scratch_.clear();
         std::uint32_t e = faces_[f].edge;
         for (std::uint32_t k = 0; k < faces_[f].count; ++k, e = edges_[e].next) scratch_.push_back(twin_face(e));
-        const std::vector<std::uint32_t> neighbours = scratch_;
-        for (std::uint32_t point : moved) assign(point, neighbours);
+        for (std::uint32_t point : moved) assign(point, scratch_);
         return none;
     }
     const std::uint32_t eye = outside[best];
@@ -261,6 +316,7 @@ bool QuickHullBuilder<W>::build(const std::vector<std::uint32_t>& candidates,
     edges_.clear();
     faces_.clear();
     pending_.clear();
+    degenerate_.clear();
     stamp_.assign(points_.size(), 0);
     step_ = 0;
     failed_ = false;
@@ -278,21 +334,22 @@ bool QuickHullBuilder<W>::build(const std::vector<std::uint32_t>& candidates,
             if (edges_[i].origin == head(j) && edges_[j].origin == head(i)) link(i, j);
     for (const HalfEdge& e : edges_)
         if (e.twin == none) return false;
-    if (failed_) return false;
+    if (failed_ || !degenerate_.empty()) return false;
 
     const std::vector<std::uint32_t> first_faces{0, 1, 2, 3};
     for (std::uint32_t point : candidates)
         if (point != a && point != b && point != c && point != d) assign(point, first_faces);
 
-    // 2.-6. Add eyes until no face has a conflict list. Each round either adds a point to the
-    // hull or empties a list for good, so the cap is never reached by a consistent mesh.
-    const std::size_t cap = 4 * candidates.size() + 64;
+    // 2.-6. Add eyes until no face has a conflict list. A round adds a point to the hull, drops
+    // a duplicate, or hands a list on from a face that changed since it got the points (a face
+    // changes only when created or merged); so the cap, which grows with the faces, is never
+    // reached by a consistent mesh.
     std::size_t rounds = 0;
     for (std::size_t next = 0; next < pending_.size(); ++next) {
-        if (++rounds > cap) return false;
         const std::uint32_t f = pending_[next];
         faces_[f].queued = false;
         if (!faces_[f].alive || faces_[f].outside.empty()) continue;
+        if (++rounds > 2 * candidates.size() + 4 * faces_.size() + 64) return false;
         const std::uint32_t eye = take_eye(f);
         if (eye != none && !add_point(eye, f)) return false;
         if (failed_) return false;
@@ -332,26 +389,28 @@ bool QuickHullBuilder<W>::add_point(std::uint32_t eye, std::uint32_t eye_face) {
         link(faces_[new_faces_[i]].edge + 2, faces_[new_faces_[(i + 1) % n]].edge);
     if (failed_) return false;
 
-    // 5. Merge coplanar or concave neighbours: judged from the larger face, then from both.
+    // 5. Merge slivers away, then coplanar or concave neighbours: judged from the larger face,
+    // then from both.
+    if (!merge_degenerate_faces()) return false;
     const std::size_t merge_cap = faces_.size() + 8;
     for (std::uint32_t f : new_faces_) {
         for (std::size_t k = 0; faces_[f].alive && merge_with_neighbour(f, false); ++k)
             if (k > merge_cap || failed_) return false;
     }
+    if (!merge_degenerate_faces()) return false;
     for (std::uint32_t f : new_faces_) {
         if (!faces_[f].alive || !faces_[f].nonconvex) continue;
         faces_[f].nonconvex = false;
         for (std::size_t k = 0; faces_[f].alive && merge_with_neighbour(f, true); ++k)
             if (k > merge_cap || failed_) return false;
     }
-    if (failed_) return false;
+    if (failed_ || !merge_degenerate_faces()) return false;
 
     // 6. Conflict points of the deleted faces go to the new face they are farthest above.
     scratch_.clear();
     for (std::uint32_t f : new_faces_)
         if (faces_[f].alive) scratch_.push_back(f);
-    const std::vector<std::uint32_t> alive_new = scratch_;
-    for (std::uint32_t point : unclaimed_) assign(point, alive_new);
+    for (std::uint32_t point : unclaimed_) assign(point, scratch_);
     return true;
 }
 
@@ -360,17 +419,14 @@ bool QuickHullBuilder<W>::find_horizon(std::uint32_t eye, std::uint32_t eye_face
     // Depth-first over the visible faces (Lloyd's recursion with an explicit stack). A face is
     // entered through one edge and its other edges are visited in order, so the horizon edges
     // come out as one counter-clockwise loop around the visible region.
-    struct Frame {
-        std::uint32_t edge;       // next edge of this face to look across
-        std::uint32_t remaining;  // edges of this face still to look across
-    };
-    std::vector<Frame> stack;
+    std::vector<HorizonFrame>& stack = stack_;
+    stack.clear();
     remove_face(eye_face);
     stack.push_back({faces_[eye_face].edge, faces_[eye_face].count});
     const std::size_t cap = 2 * edges_.size() + 8;
     for (std::size_t steps = 0; !stack.empty(); ++steps) {
         if (steps > cap) return false;
-        Frame& top = stack.back();
+        HorizonFrame& top = stack.back();
         if (top.remaining == 0) {
             stack.pop_back();
             continue;
@@ -456,8 +512,7 @@ void QuickHullBuilder<W>::merge_faces(std::uint32_t e) {
     if (failed_) return;
 
     // The absorbed faces' conflict points stay with f when still above it.
-    const std::vector<std::uint32_t> gone = discarded_;
-    for (std::uint32_t dead : gone) {
+    for (std::uint32_t dead : discarded_) {
         std::vector<std::uint32_t> moved;
         moved.swap(faces_[dead].outside);
         for (std::uint32_t point : moved) {
@@ -616,8 +671,8 @@ inline void remove_straight_edge_vertices(std::vector<std::vector<std::uint32_t>
         face.erase(std::remove_if(face.begin(), face.end(), [&](std::uint32_t v) { return removed[v]; }), face.end());
 }
 
-/// What ConvexPolyhedron<T> will check, with a factor 2 margin, for faces given in a working
-/// precision W: per face, whether it is too small or not planar enough; and the volume.
+/// What ConvexPolyhedron<T>'s constructor will check (keep the two in step), with a margin for
+/// its round-off in T: per face, whether it is too small or not planar enough; and the volume.
 template <class W>
 struct HullCheck {
     std::vector<bool> bad_face;
@@ -642,7 +697,7 @@ HullCheck<W> check_hull_faces(const std::vector<Vec3<W>>& v, const std::vector<s
     reference /= static_cast<W>(used);
     const W scale = length(bounds.max - bounds.min);
     const W tolerance = W(64) * W(ScalarTraits<T>::geometric_tolerance) * scale;  // as ConvexPolyhedron
-    out.min_volume = W(2) * tolerance * scale * scale;
+    out.min_volume = W(1.05) * tolerance * scale * scale;
     out.bad_face.assign(faces.size(), false);
     out.area.assign(faces.size(), W(0));
     for (std::size_t f = 0; f < faces.size(); ++f) {
@@ -737,11 +792,16 @@ std::vector<bool> vertices_to_drop(const std::vector<Vec3<W>>& v, const std::vec
 
 template <class T>
 ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
+    //  1. Check the input: count, finiteness, magnitude.
+    //  2. Centre on the bounding box; reject coincident points; set ε.
+    //  3. Find the starting tetrahedron; reject collinear and coplanar clouds.
+    //  4. Quickhull; drop vertices of faces ConvexPolyhedron<T> would reject and rebuild.
+    //  5. Build the polyhedron at the box centre and re-centre it on its centroid.
     // Decided in double for both scalar types; see "Precision" at the top of the file.
     using W = double;
     const char* where = "make_convex_hull";
 
-    // Input at the door: count, finiteness, magnitude.
+    // 1. Input at the door.
     const std::size_t n = points.size();
     if (n < 4) detail::report_invalid(where, "needs at least 4 points, point count", static_cast<double>(n));
     if (n >= std::size_t(0xffffffffu)) detail::report_invalid(where, "needs fewer than 2^32 - 1 points, point count", static_cast<double>(n));
@@ -757,7 +817,8 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
     if (largest > std::sqrt(ScalarTraits<T>::max) / T(64))
         detail::report_invalid(where, "has coordinates too large to square in this precision; largest |coordinate| (m)", static_cast<double>(largest));
 
-    // Centre on the bounding box and measure the cloud.
+    // 2. Centre on the bounding box (ConvexPolyhedron's Newell sums lose a face's normal to
+    // round-off when the coordinates dwarf the cloud) and measure the cloud.
     const Vec3<T> centre = bounds.center();
     const Vec3<W> centre_w(centre);
     std::vector<Vec3<W>> q(n);
@@ -771,7 +832,7 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
     const W tolerance = W(ScalarTraits<T>::geometric_tolerance) * diagonal;  // ε, a face's thickness
     const W flat = W(64) * tolerance;                                         // ConvexPolyhedron's tolerance
 
-    // The starting tetrahedron; a cloud that has none is collinear or coplanar.
+    // 3. The starting tetrahedron; a cloud that has none is collinear or coplanar.
     std::vector<std::uint32_t> candidates(n);
     for (std::size_t i = 0; i < n; ++i) candidates[i] = static_cast<std::uint32_t>(i);
     detail::HullSimplex<W> simplex = detail::hull_simplex(q, candidates);
@@ -780,9 +841,10 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
     if (!(simplex.plane_distance > flat))
         detail::report_invalid(where, "points are coplanar; largest distance from their plane (m)", simplex.plane_distance);
 
-    // Quickhull, then drop vertices of faces too small for ConvexPolyhedron<T> and rebuild from
-    // the remaining vertices until none is left (see the top of the file). A numerical failure
-    // is retried with thicker faces.
+    // 4. Quickhull, then drop vertices of faces too small for ConvexPolyhedron<T> and rebuild
+    // from the remaining vertices until none is left (see the top of the file). Each round drops
+    // at least one vertex, so the loop ends. A mesh torn by round-off (not seen in testing) is
+    // rebuilt with thicker faces.
     std::vector<Vec3<W>> rounded(n);  // what ConvexPolyhedron<T> will see: p - centre in T
     for (std::size_t i = 0; i < n; ++i) rounded[i] = Vec3<W>(points[i] - centre);
     std::vector<std::vector<std::uint32_t>> faces;
@@ -801,7 +863,7 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
 
         const detail::HullCheck<W> check = detail::check_hull_faces<T>(rounded, faces);
         if (!(check.volume > check.min_volume))
-            detail::report_invalid(where, "points are coplanar within tolerance; hull volume (m^3)", check.volume);
+            detail::report_invalid(where, "points are collinear or coplanar within tolerance; hull volume (m^3)", check.volume);
         if (check.all_faces_good) break;
         if (round == max_rounds)
             detail::report_invalid(where, "could not reduce the hull to faces ConvexPolyhedron can represent; point count", static_cast<double>(n));
@@ -820,7 +882,7 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
             detail::report_invalid(where, "points are coplanar within tolerance; largest distance from their plane (m)", simplex.plane_distance);
     }
 
-    // The polyhedron, on compact vertex indices, then re-centred on its centroid.
+    // 5. The polyhedron, on compact vertex indices, then re-centred on its centroid.
     std::vector<std::uint32_t> index_of(n, 0xffffffffu);
     std::vector<Vec3<T>> vertices;
     for (auto& face : faces)

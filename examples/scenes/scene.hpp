@@ -1,0 +1,44 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// What a scene function returns: the bodies a test or a renderer cares about and a suggested
+// camera. Scenes are shared by the renderer, the tests and the benchmarks (STYLE.md, "Scenes are
+// shared, not copied"), so what is drawn is what is tested.
+#pragma once
+
+#include <xeno/dynamics/world.hpp>
+
+#include <string>
+#include <vector>
+
+namespace xeno::scenes {
+
+/// Bodies of interest and a suggested view (camera position and target, metres).
+struct Scene {
+    std::vector<BodyId> bodies;   ///< the scene's dynamic bodies, in creation order
+    f64::Vec3 eye{8, 5, 12};
+    f64::Vec3 target{0, 1, 0};
+};
+
+/// A static ground box whose top face is the plane y = 0.
+template <class T>
+BodyId add_ground(World<T>& world, T half_size = T(50), T friction = T(0.6)) {
+    BodyDef<T> def;
+    def.type = BodyType::static_body;
+    def.position = {T(0), T(-0.5), T(0)};
+    def.material.friction = friction;
+    return world.create_body(Box<T>(half_size, T(0.5), half_size), def);
+}
+
+/// A dynamic box of the given half extents at a position (density 1000 kg/m³ unless given).
+template <class T>
+BodyId add_box(World<T>& world, const Vec3<T>& half_extents, const Vec3<T>& position,
+               const Quat<T>& orientation = Quat<T>::identity(), T density = T(1000)) {
+    BodyDef<T> def;
+    def.position = position;
+    def.orientation = orientation;
+    def.density = density;
+    return world.create_body(Box<T>(half_extents), def);
+}
+
+}  // namespace xeno::scenes

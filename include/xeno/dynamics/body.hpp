@@ -1,0 +1,297 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Body<T>: a rigid body (the thesis's RigidBody, 3.2.2.5). Its position is its centre of mass and
+// its orientation turns the shape's local frame about that point (CONVENTIONS.md). Three kinds:
+//   static     never moves (the ground); infinite mass. The thesis made a body static by not
+//              computing its mass properties (Quadro 10); here it is said explicitly.
+//   kinematic  moved by the user through its velocity; infinite mass, so it pushes dynamic bodies
+//              and is never pushed back.
+//   dynamic    moved by forces, gravity and contacts.
+// Bodies live in a World and are reached through a BodyId (slot index + generation): a handle to
+// a destroyed body is stale and every use of it is reported (InvalidArgument), never a dangling
+// reference. Setters check their input at the door and wake the body.
+#pragma once
+
+#include "../shape/shape.hpp"
+#include "material.hpp"
+
+#include <cstdint>
+#include <memory>
+
+namespace xeno {
+
+template <class T>
+class World;
+
+enum class BodyType : std::uint8_t { static_body, kinematic, dynamic };
+
+/// A handle to a body: slot index and generation. Default-constructed handles are invalid.
+struct BodyId {
+    static constexpr std::uint32_t invalid_index = ~std::uint32_t(0);
+    std::uint32_t index = invalid_index;
+    std::uint32_t generation = 0;
+    bool valid() const { return index != invalid_index; }
+    friend bool operator==(BodyId a, BodyId b) { return a.index == b.index && a.generation == b.generation; }
+    friend bool operator!=(BodyId a, BodyId b) { return !(a == b); }
+};
+
+/// Everything needed to create a body. Units SI; position is the centre of mass.
+template <class T>
+struct BodyDef {
+    BodyType type = BodyType::dynamic;
+    Vec3<T> position{};                             ///< m, world: the centre of mass
+    Quat<T> orientation = Quat<T>::identity();      ///< normalised on creation; must not be zero
+    Vec3<T> linear_velocity{};                      ///< m/s, world
+    Vec3<T> angular_velocity{};                     ///< rad/s, world
+    T density = T(1000);                            ///< kg/m³ (dynamic bodies): mass = density × volume
+    T mass = T(0);                                  ///< kg: > 0 sets the mass directly, inertia scaled to it
+    Material<T> material{};
+    T linear_damping = T(0);                        ///< 1/s: v decays as 1/(1 + c dt) per step
+    T angular_damping = T(0);                       ///< 1/s
+    T gravity_scale = T(1);
+    bool fast = false;          ///< continuous collision against static and kinematic bodies; no speed cap
+    bool allow_sleep = true;    ///< false keeps the body (and its island) awake
+    bool sensor = false;        ///< reports overlaps, never pushes or is pushed
+    std::uint32_t layer = 1;    ///< collision layer bits of this body
+    std::uint32_t mask = ~std::uint32_t(0);  ///< layers it collides with (both sides must agree)
+    std::uint64_t user_data = 0;
+};
+
+/// A rigid body in a World. Read it through World::body(id); change it through its setters.
+template <class T>
+class Body {
+public:
+    using scalar_type = T;
+
+    BodyType type() const { return type_; }
+    bool is_static() const { return type_ == BodyType::static_body; }
+    bool is_dynamic() const { return type_ == BodyType::dynamic; }
+    const Shape<T>& shape() const { return *shape_; }
+    const std::shared_ptr<const Shape<T>>& shared_shape() const { return shape_; }
+
+    const Vec3<T>& position() const { return position_; }              ///< m, the centre of mass
+    const Quat<T>& orientation() const { return orientation_; }
+    Transform<T> transform() const { return {position_, orientation_}; }
+    const Vec3<T>& linear_velocity() const { return linear_velocity_; }  ///< m/s
+    const Vec3<T>& angular_velocity() const { return angular_velocity_; }  ///< rad/s, world
+    const Vec3<T>& force() const { return force_; }    ///< N, accumulated for the next step
+    const Vec3<T>& torque() const { return torque_; }  ///< N·m, accumulated for the next step
+
+    T mass() const { return inverse_mass_ > T(0) ? T(1) / inverse_mass_ : ScalarTraits<T>::infinity; }  ///< kg
+    T inverse_mass() const { return inverse_mass_; }
+    /// Inertia about the centre of mass in the body frame (kg·m²); zero for static/kinematic.
+    const Mat3<T>& local_inertia() const { return inertia_local_; }
+    /// I⁻¹ in world axes: R I_local⁻¹ Rᵀ.
+    Mat3<T> inverse_inertia_world() const {
+        const Mat3<T> r = to_matrix(orientation_);
+        return r * inverse_inertia_local_ * transpose(r);
+    }
+    const Material<T>& material() const { return material_; }
+    T linear_damping() const { return linear_damping_; }
+    T angular_damping() const { return angular_damping_; }
+    T gravity_scale() const { return gravity_scale_; }
+    bool fast() const { return fast_; }
+    bool sensor() const { return sensor_; }
+    bool awake() const { return awake_; }
+    bool allow_sleep() const { return allow_sleep_; }
+    std::uint32_t layer() const { return layer_; }
+    std::uint32_t mask() const { return mask_; }
+    std::uint64_t user_data() const { return user_data_; }
+
+    /// Body frame → world.
+    Vec3<T> world_point(const Vec3<T>& local) const { return rotate(orientation_, local) + position_; }
+    Vec3<T> world_vector(const Vec3<T>& local) const { return rotate(orientation_, local); }
+    /// World → body frame.
+    Vec3<T> local_point(const Vec3<T>& world) const { return inverse_rotate(orientation_, world - position_); }
+    Vec3<T> local_vector(const Vec3<T>& world) const { return inverse_rotate(orientation_, world); }
+    /// Velocity (m/s) of the material point at a world position: v + ω × (p − x).
+    Vec3<T> velocity_at(const Vec3<T>& world) const {
+        return linear_velocity_ + cross(angular_velocity_, world - position_);
+    }
+    /// Kinetic energy (J): ½ m v² + ½ ωᵀ I ω.
+    T kinetic_energy() const;
+
+    // Setters: each checks its input (InvalidArgument) and wakes the body.
+    void set_linear_velocity(const Vec3<T>& v);
+    void set_angular_velocity(const Vec3<T>& w);
+    /// Adds a force (N) at the centre of mass for the next step.
+    void apply_force(const Vec3<T>& f);
+    /// Adds a force (N) at a world point: also a torque (p − x) × f.
+    void apply_force_at(const Vec3<T>& f, const Vec3<T>& world_point);
+    void apply_torque(const Vec3<T>& t);
+    /// An instantaneous impulse (N·s) at a world point: Δv = J/m, Δω = I⁻¹ (p − x) × J.
+    void apply_impulse_at(const Vec3<T>& impulse, const Vec3<T>& world_point);
+    void apply_linear_impulse(const Vec3<T>& impulse);
+    void apply_angular_impulse(const Vec3<T>& impulse);
+    void set_material(const Material<T>& m) {
+        detail::validate(m, "Body::set_material");
+        material_ = m;
+    }
+    void set_damping(T linear, T angular);
+    void set_gravity_scale(T scale);
+    void set_user_data(std::uint64_t data) { user_data_ = data; }
+    void set_allow_sleep(bool allow) {
+        allow_sleep_ = allow;
+        wake();
+    }
+    /// Mass properties set directly (dynamic bodies): mass > 0 and a positive-definite inertia
+    /// about the centre of mass; `center` must be zero (the body's position is its centre).
+    void set_mass_properties(const MassProperties<T>& m);
+    /// Wakes the body (and, at the next step, its island).
+    void wake() {
+        awake_ = true;
+        sleep_time_ = T(0);
+    }
+
+private:
+    friend class World<T>;
+    void require_finite(const Vec3<T>& v, const char* where, const char* what) const;
+
+    std::shared_ptr<const Shape<T>> shape_;
+    Vec3<T> position_{};
+    Quat<T> orientation_ = Quat<T>::identity();
+    Vec3<T> linear_velocity_{};
+    Vec3<T> angular_velocity_{};
+    Vec3<T> force_{};
+    Vec3<T> torque_{};
+    Mat3<T> inertia_local_{};          ///< kg·m², body frame
+    Mat3<T> inverse_inertia_local_{};  ///< 1/(kg·m²), body frame; zero for static/kinematic
+    T inverse_mass_{};                 ///< 1/kg; zero for static/kinematic
+    Material<T> material_{};
+    T linear_damping_{}, angular_damping_{}, gravity_scale_{1};
+    T sleep_time_{};                   ///< s spent below the sleep speeds
+    std::uint64_t user_data_{};
+    std::uint32_t generation_ = 0;     ///< matches BodyId::generation while the body lives
+    std::uint32_t layer_ = 1, mask_ = ~std::uint32_t(0);
+    BodyType type_ = BodyType::dynamic;
+    bool alive_ = false;               ///< slot in use
+    bool awake_ = true;
+    bool allow_sleep_ = true;
+    bool fast_ = false;
+    bool sensor_ = false;
+    bool isotropic_ = true;            ///< inertia ∝ identity: no gyroscopic term
+    bool moved_ = false;               ///< teleported since the last step (broad phase must see it)
+};
+
+template <class T>
+void Body<T>::require_finite(const Vec3<T>& v, const char* where, const char* what) const {
+    if (!is_finite(v)) {
+        const T bad = !std::isfinite(v.x) ? v.x : (!std::isfinite(v.y) ? v.y : v.z);
+        detail::report_invalid(where, (std::string(what) + " must be finite").c_str(), static_cast<double>(bad));
+    }
+}
+
+template <class T>
+T Body<T>::kinetic_energy() const {
+    if (inverse_mass_ == T(0)) return T(0);
+    const Vec3<T> w_local = inverse_rotate(orientation_, angular_velocity_);
+    return T(0.5) * (length_squared(linear_velocity_) / inverse_mass_ + dot(w_local, inertia_local_ * w_local));
+}
+
+template <class T>
+void Body<T>::set_linear_velocity(const Vec3<T>& v) {
+    require_finite(v, "Body::set_linear_velocity", "velocity");
+    if (type_ == BodyType::static_body) return;
+    linear_velocity_ = v;
+    wake();
+}
+
+template <class T>
+void Body<T>::set_angular_velocity(const Vec3<T>& w) {
+    require_finite(w, "Body::set_angular_velocity", "angular velocity");
+    if (type_ == BodyType::static_body) return;
+    angular_velocity_ = w;
+    wake();
+}
+
+template <class T>
+void Body<T>::apply_force(const Vec3<T>& f) {
+    require_finite(f, "Body::apply_force", "force");
+    if (type_ != BodyType::dynamic) return;
+    force_ += f;
+    wake();
+}
+
+template <class T>
+void Body<T>::apply_force_at(const Vec3<T>& f, const Vec3<T>& world_point) {
+    require_finite(f, "Body::apply_force_at", "force");
+    require_finite(world_point, "Body::apply_force_at", "point");
+    if (type_ != BodyType::dynamic) return;
+    force_ += f;
+    torque_ += cross(world_point - position_, f);
+    wake();
+}
+
+template <class T>
+void Body<T>::apply_torque(const Vec3<T>& t) {
+    require_finite(t, "Body::apply_torque", "torque");
+    if (type_ != BodyType::dynamic) return;
+    torque_ += t;
+    wake();
+}
+
+template <class T>
+void Body<T>::apply_impulse_at(const Vec3<T>& impulse, const Vec3<T>& world_point) {
+    require_finite(impulse, "Body::apply_impulse_at", "impulse");
+    require_finite(world_point, "Body::apply_impulse_at", "point");
+    if (type_ != BodyType::dynamic) return;
+    linear_velocity_ += impulse * inverse_mass_;
+    angular_velocity_ += inverse_inertia_world() * cross(world_point - position_, impulse);
+    wake();
+}
+
+template <class T>
+void Body<T>::apply_linear_impulse(const Vec3<T>& impulse) {
+    require_finite(impulse, "Body::apply_linear_impulse", "impulse");
+    if (type_ != BodyType::dynamic) return;
+    linear_velocity_ += impulse * inverse_mass_;
+    wake();
+}
+
+template <class T>
+void Body<T>::apply_angular_impulse(const Vec3<T>& impulse) {
+    require_finite(impulse, "Body::apply_angular_impulse", "impulse");
+    if (type_ != BodyType::dynamic) return;
+    angular_velocity_ += inverse_inertia_world() * impulse;
+    wake();
+}
+
+template <class T>
+void Body<T>::set_damping(T linear, T angular) {
+    detail::require_non_negative(linear, "Body::set_damping", "linear");
+    detail::require_non_negative(angular, "Body::set_damping", "angular");
+    linear_damping_ = linear;
+    angular_damping_ = angular;
+}
+
+template <class T>
+void Body<T>::set_gravity_scale(T scale) {
+    detail::require_finite(scale, "Body::set_gravity_scale", "scale");
+    gravity_scale_ = scale;
+    wake();
+}
+
+template <class T>
+void Body<T>::set_mass_properties(const MassProperties<T>& m) {
+    const char* where = "Body::set_mass_properties";
+    if (type_ != BodyType::dynamic) detail::report_invalid(where, "only dynamic bodies have mass; body type", static_cast<double>(type_));
+    detail::require_positive(m.mass, where, "mass");
+    if (length(m.center) > T(1e-6) * (T(1) + bounding_radius(*shape_)))
+        detail::report_invalid(where, "center must be 0 (the body's position is its centre of mass); |center|", static_cast<double>(length(m.center)));
+    const std::optional<Mat3<T>> inv = try_inverse(m.inertia);
+    if (!is_finite(m.inertia) || !inv || m.inertia[0].x <= T(0) || m.inertia[1].y <= T(0) || m.inertia[2].z <= T(0))
+        detail::report_invalid(where, "inertia must be finite and positive definite; Ixx", static_cast<double>(m.inertia[0].x));
+    inverse_mass_ = T(1) / m.mass;
+    inertia_local_ = m.inertia;
+    inverse_inertia_local_ = *inv;
+    const T mean = trace(m.inertia) / T(3);
+    isotropic_ = length(m.inertia[0] - Vec3<T>::unit_x() * mean) + length(m.inertia[1] - Vec3<T>::unit_y() * mean) +
+                     length(m.inertia[2] - Vec3<T>::unit_z() * mean) <= T(1e-6) * mean;
+    wake();
+}
+
+namespace f32 { using Body = xeno::Body<float>; using BodyDef = xeno::BodyDef<float>; }
+namespace f64 { using Body = xeno::Body<double>; using BodyDef = xeno::BodyDef<double>; }
+
+}  // namespace xeno

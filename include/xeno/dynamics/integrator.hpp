@@ -1,0 +1,69 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Semi-implicit (symplectic) Euler, the thesis's Newton–Störmer–Verlet (2.4, Quadro 21): first
+// velocities from forces over the (sub)step h, then, after the contact solve, positions from the
+// new velocities. The gyroscopic term ω × Iω is integrated implicitly with one Newton step in the
+// body frame by the implicit midpoint rule (after Catto, "Numerical Methods", GDC 2015, who uses
+// implicit Euler): an explicit term makes a free spinning body gain energy and wander; the
+// midpoint rule keeps the magnitude of its angular momentum. Orientations advance by
+// q ← q + h/2 (0, ω) q, renormalised.
+#pragma once
+
+#include "solver_body.hpp"
+
+namespace xeno {
+
+/// The per-step constants of one dynamic body that velocity integration needs.
+template <class T>
+struct BodyIntegration {
+    Vec3<T> acceleration{};      ///< m/s²: gravity × scale + force / mass
+    Vec3<T> angular_impulse_rate{};  ///< rad/s²: I_world⁻¹ torque
+    Mat3<T> inertia_local{};     ///< kg·m², body frame (gyroscopic term)
+    Quat<T> orientation0{};      ///< orientation at the start of the step
+    T linear_damping{}, angular_damping{};
+    bool gyroscopic = false;     ///< false for isotropic inertia, where ω × Iω = 0
+};
+
+/// v += h a, ω += h I⁻¹τ, then the implicit gyroscopic correction and damping.
+template <class T>
+void integrate_velocity(SolverBody<T>& body, const BodyIntegration<T>& in, T h) {
+    body.v += in.acceleration * h;
+    body.w += in.angular_impulse_rate * h;
+    if (in.gyroscopic) {
+        // Implicit midpoint in the body frame: I (ω' − ω) + h ω_m × I ω_m = 0 with
+        // ω_m = (ω + ω')/2. Dotting with I ω_m shows |I ω'| = |I ω|: the magnitude of the
+        // angular momentum is kept exactly (implicit Euler, one step of which Catto suggests,
+        // loses about 2 % in 10 s on a tumbling box). Two Newton steps from ω' = ω, with
+        // J = I + h/2 (skew(ω_m) I − skew(I ω_m)).
+        const Quat<T> q = body.dq * in.orientation0;
+        const Vec3<T> w0 = inverse_rotate(q, body.w);
+        const Vec3<T> l0 = in.inertia_local * w0;
+        Vec3<T> w1 = w0;
+        for (int newton = 0; newton < 2; ++newton) {
+            const Vec3<T> wm = (w0 + w1) * T(0.5);
+            const Vec3<T> lm = in.inertia_local * wm;
+            const Vec3<T> f = in.inertia_local * w1 - l0 + cross(wm, lm) * h;
+            const Mat3<T> j = in.inertia_local + (skew(wm) * in.inertia_local - skew(lm)) * (T(0.5) * h);
+            const std::optional<Mat3<T>> j_inv = try_inverse(j);
+            if (!j_inv) break;
+            w1 -= *j_inv * f;
+        }
+        body.w = rotate(q, w1);
+    }
+    body.v *= T(1) / (T(1) + h * in.linear_damping);
+    body.w *= T(1) / (T(1) + h * in.angular_damping);
+}
+
+/// Δx += h v, Δq ← Δq + h/2 (0, ω) Δq, with the speed caps against tunnelling.
+template <class T>
+void integrate_position(SolverBody<T>& body, T h, T max_speed, T max_rotation) {
+    const T speed_sq = length_squared(body.v);
+    if (speed_sq > max_speed * max_speed) body.v *= max_speed / std::sqrt(speed_sq);
+    const T turn_sq = length_squared(body.w) * h * h;
+    if (turn_sq > max_rotation * max_rotation) body.w *= max_rotation / std::sqrt(turn_sq);
+    body.dp += body.v * h;
+    body.dq = integrate(body.dq, body.w, h);
+}
+
+}  // namespace xeno

@@ -1,0 +1,90 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// WorldSettings<T>: every tunable of the solver in one struct, in SI units for bodies of 0.1–10 m
+// (CONVENTIONS.md). docs/solver.md explains each and how the defaults were chosen; the numbers
+// follow Box2D v3's soft step (SOLVER-NOTES.md 2.5, 7) with 8 substeps and contacts at 60 Hz, so
+// that stacks sag less than a millimetre per box.
+#pragma once
+
+#include "../broadphase/pair.hpp"
+#include "../error.hpp"
+#include "../math/vec3.hpp"
+
+namespace xeno {
+
+/// How contacts remove overlap. Both use sequential impulses with warm starting, accumulated
+/// impulse clamping and Coulomb friction; they differ in how position error is fed back.
+enum class SolverMode {
+    /// Substeps with soft (spring–damper) contact rows, a relax pass without bias and a
+    /// restitution pass (Catto, "Solver2D", 2024; Box2D v3). The default: see docs/solver.md.
+    soft_step,
+    /// One step, rigid rows with a Baumgarte bias beyond the slop, then relax iterations without
+    /// bias (the classic "PGS + Baumgarte" of Box2D v2.x with split-impulse style relaxing).
+    baumgarte,
+};
+
+/// Solver and world settings. Lengths in metres, speeds in m/s, times in seconds.
+template <class T>
+struct WorldSettings {
+    Vec3<T> gravity{T(0), T(-9.81), T(0)};  ///< m/s², world frame (y up)
+    T fixed_time_step = T(1) / T(60);       ///< s: the step update() takes
+    int max_steps_per_update = 8;           ///< update() drops simulated time beyond this many steps
+
+    SolverMode solver = SolverMode::soft_step;
+    int substeps = 8;               ///< soft step: solver substeps per step
+    int velocity_iterations = 1;    ///< biased iterations per substep (soft step) or per step (baumgarte: 10 recommended)
+    int relax_iterations = 1;       ///< unbiased iterations after each substep (baumgarte: per step)
+    T contact_hertz = T(60);        ///< soft step: contact stiffness as a frequency, capped at 1/8 of the substep rate
+    T contact_damping_ratio = T(10);  ///< soft step: heavily over-damped so overlap leaves without overshoot
+    T static_contact_hertz_scale = T(2);  ///< contacts with static or kinematic bodies are this much stiffer
+    T baumgarte = T(0.2);           ///< baumgarte mode: fraction of the overlap removed per step
+    T max_push_out_speed = T(3);    ///< m/s: cap on the speed at which overlap is removed
+    T linear_slop = T(0.005);       ///< m: overlap tolerated without correction (baumgarte) and contact tolerance
+    T speculative_distance = T(0.02);  ///< m: gap below which contacts exist before touching (plus the approach of one step)
+    T contact_match_distance = T(0.02);  ///< m: a new contact point within this of an old one inherits its impulses
+    T restitution_threshold = T(1);  ///< m/s: slower approaches do not bounce (resting boxes stay put)
+    T max_linear_speed = T(400);     ///< m/s: speed cap against tunnelling (lifted for fast bodies by CCD)
+    T max_rotation_per_step = T(0.25) * ScalarTraits<T>::pi;  ///< rad per step
+    bool warm_starting = true;       ///< reuse last step's impulses as the first guess
+
+    // Sleeping (islands whose bodies stay slow for sleep_time sleep; see docs/features.md).
+    bool allow_sleeping = true;
+    T sleep_linear_speed = T(0.05);   ///< m/s
+    T sleep_angular_speed = T(0.05);  ///< rad/s
+    T sleep_time = T(0.5);            ///< s
+
+    BroadPhaseKind broad_phase = BroadPhaseKind::sweep_and_prune;
+};
+
+namespace detail {
+template <class T>
+void validate(const WorldSettings<T>& s) {
+    const char* w = "WorldSettings";
+    if (!is_finite(s.gravity)) report_invalid(w, "gravity must be finite, y", static_cast<double>(s.gravity.y));
+    require_positive(s.fixed_time_step, w, "fixed_time_step");
+    if (s.max_steps_per_update < 1) report_invalid(w, "max_steps_per_update must be >= 1", s.max_steps_per_update);
+    if (s.substeps < 1) report_invalid(w, "substeps must be >= 1", s.substeps);
+    if (s.velocity_iterations < 1) report_invalid(w, "velocity_iterations must be >= 1", s.velocity_iterations);
+    if (s.relax_iterations < 0) report_invalid(w, "relax_iterations must be >= 0", s.relax_iterations);
+    require_positive(s.contact_hertz, w, "contact_hertz");
+    require_non_negative(s.contact_damping_ratio, w, "contact_damping_ratio");
+    require_positive(s.static_contact_hertz_scale, w, "static_contact_hertz_scale");
+    require_non_negative(s.baumgarte, w, "baumgarte");
+    require_positive(s.max_push_out_speed, w, "max_push_out_speed");
+    require_non_negative(s.linear_slop, w, "linear_slop");
+    require_non_negative(s.speculative_distance, w, "speculative_distance");
+    require_positive(s.contact_match_distance, w, "contact_match_distance");
+    require_non_negative(s.restitution_threshold, w, "restitution_threshold");
+    require_positive(s.max_linear_speed, w, "max_linear_speed");
+    require_positive(s.max_rotation_per_step, w, "max_rotation_per_step");
+    require_non_negative(s.sleep_linear_speed, w, "sleep_linear_speed");
+    require_non_negative(s.sleep_angular_speed, w, "sleep_angular_speed");
+    require_non_negative(s.sleep_time, w, "sleep_time");
+}
+}  // namespace detail
+
+namespace f32 { using WorldSettings = xeno::WorldSettings<float>; }
+namespace f64 { using WorldSettings = xeno::WorldSettings<double>; }
+
+}  // namespace xeno

@@ -1,0 +1,596 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// World<T>: the thesis's PhysicsSystem (3.2.2.6) templated on the scalar. It owns the bodies
+// (reached through BodyId handles that cannot dangle), their contacts and the solver's scratch.
+// step(dt) advances one fixed step and reads top to bottom, one named phase per call:
+//    1. check dt; body bounds for the broad phase
+//    2. broad phase      fattened world boxes → sorted pairs (sweep and prune by default)
+//    3. narrow phase     per pair: contact manifold by MPR + face clipping, matched to last step's
+//                        points so their impulses warm-start; pairs that left lose their contact
+//    4. wake             islands touched by an awake body wake up
+//    5. prepare          solver bodies and contact rows (anchors, effective masses, softness,
+//                        restitution speeds captured before gravity)
+//    6. substeps         integrate velocities → warm start → solve with bias → integrate positions
+//                        → relax (SOLVER-NOTES.md 2.6; one substep and N iterations in baumgarte mode)
+//    7. restitution      one pass after the substeps
+//    8. finish           impulses stored in the manifolds, poses and velocities written back
+//    9. sleep            islands of slow bodies fall asleep; events are collected
+// update(seconds) runs whole steps from an accumulator (thesis Quadro 22) and leaves the remainder
+// as an interpolation factor for rendering.
+#pragma once
+
+#include "../broadphase/brute_force.hpp"
+#include "../broadphase/sweep_and_prune.hpp"
+#include "../collide/collide.hpp"
+#include "../contact/manifold.hpp"
+#include "body.hpp"
+#include "contact_solver.hpp"
+#include "integrator.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <vector>
+
+namespace xeno {
+
+/// A touching (or nearly touching) pair and its persistent manifold; A has the lower slot.
+template <class T>
+struct Contact {
+    BodyId a, b;
+    Manifold<T> manifold;
+    T friction{}, restitution{};  ///< combined from the two materials
+    bool touching = false;        ///< some point overlaps (not only speculative)
+    bool sensor = false;          ///< one body is a sensor: reported, never solved
+};
+
+/// Counters of the last step, for benchmarks and tests.
+struct StepStats {
+    std::size_t broad_pairs = 0;     ///< pairs whose boxes overlapped
+    std::size_t contacts = 0;        ///< manifolds with at least one point
+    std::size_t contact_points = 0;  ///< rows solved
+    std::size_t awake_bodies = 0;
+};
+
+/// A rigid-body world of scalar T.
+template <class T>
+class World {
+public:
+    using scalar_type = T;
+
+    explicit World(const WorldSettings<T>& settings = {}) : settings_(settings) { detail::validate(settings_); }
+
+    const WorldSettings<T>& settings() const { return settings_; }
+    /// Replaces the settings (checked, InvalidArgument on bad values).
+    void set_settings(const WorldSettings<T>& s) {
+        detail::validate(s);
+        settings_ = s;
+    }
+    void set_gravity(const Vec3<T>& g) {
+        WorldSettings<T> s = settings_;
+        s.gravity = g;
+        set_settings(s);
+    }
+
+    /// Creates a body of the given (shared) shape. Checks the definition at the door: finite
+    /// pose and velocities, non-zero orientation (normalised), positive density or mass for
+    /// dynamic bodies, a shape whose centre of mass is its local origin.
+    BodyId create_body(std::shared_ptr<const Shape<T>> shape, const BodyDef<T>& def = {});
+    /// Convenience: the shape is copied into a new shared shape.
+    BodyId create_body(const Shape<T>& shape, const BodyDef<T>& def = {}) {
+        return create_body(std::make_shared<const Shape<T>>(shape), def);
+    }
+    /// Removes the body and every contact it had; bodies resting on it wake up. The handle
+    /// (and every copy of it) becomes stale.
+    void destroy_body(BodyId id);
+    /// True while the handle refers to a living body.
+    bool contains(BodyId id) const {
+        return id.index < bodies_.size() && bodies_[id.index].alive_ && bodies_[id.index].generation_ == id.generation;
+    }
+    /// The body of a handle; a stale or invalid handle is reported (InvalidArgument).
+    Body<T>& body(BodyId id) { return bodies_[checked(id, "World::body")]; }
+    const Body<T>& body(BodyId id) const { return bodies_[checked(id, "World::body")]; }
+    /// Moves a body (teleport), waking it and the bodies it touched.
+    void set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& orientation);
+
+    std::size_t body_count() const { return bodies_.size() - free_slots_.size(); }
+    /// Calls f(BodyId, const Body<T>&) for every living body, in slot order.
+    template <class F>
+    void for_each_body(F&& f) const {
+        for (std::uint32_t i = 0; i < bodies_.size(); ++i)
+            if (bodies_[i].alive_) f(BodyId{i, bodies_[i].generation_}, bodies_[i]);
+    }
+    /// Every contact (including speculative ones) after the last step, sorted by body pair.
+    const std::vector<Contact<T>>& contacts() const { return contacts_; }
+    const StepStats& last_step_stats() const { return stats_; }
+
+    /// Advances exactly one step of dt seconds (dt finite and > 0, else InvalidArgument).
+    void step(T dt);
+    /// Advances by `seconds` of real time in fixed steps of settings().fixed_time_step, at most
+    /// max_steps_per_update per call (time beyond is dropped so a slow frame cannot snowball).
+    /// Returns the number of steps taken.
+    int update(T seconds);
+    /// Fraction (0 … 1) of a step left in the accumulator after update(): render at
+    /// interpolated_transform() to hide the fixed step.
+    T interpolation_factor() const { return accumulator_ / settings_.fixed_time_step; }
+    /// The body's pose blended between the last two steps by interpolation_factor().
+    Transform<T> interpolated_transform(BodyId id) const;
+
+private:
+    std::uint32_t checked(BodyId id, const char* where) const {
+        if (!id.valid()) detail::report_invalid(where, "invalid body handle (default-constructed BodyId), index", -1.0);
+        if (!contains(id))
+            detail::report_invalid(where, "stale body handle: that body was destroyed; index", static_cast<double>(id.index));
+        return id.index;
+    }
+    BodyId id_of(std::uint32_t slot) const { return {slot, bodies_[slot].generation_}; }
+    /// An awake dynamic body, or a kinematic body with a velocity: something that can push.
+    static bool active(const Body<T>& b) {
+        if (b.type_ == BodyType::dynamic) return b.awake_;
+        return b.type_ == BodyType::kinematic &&
+               (length_squared(b.linear_velocity_) > T(0) || length_squared(b.angular_velocity_) > T(0));
+    }
+    void update_bounds(T dt);
+    void narrow_phase(T dt);
+    void wake_touched_islands();
+    void prepare(T dt);
+    void solve(T dt);
+    void finish();
+    void update_sleep(T dt);
+    void wake_contacts_of(std::uint32_t slot);
+
+    WorldSettings<T> settings_;
+    std::vector<Body<T>> bodies_;
+    std::vector<std::uint32_t> free_slots_;
+    std::vector<Aabb<T>> bounds_;                 ///< per slot; empty for free slots
+    std::vector<Transform<T>> previous_pose_;     ///< per slot: pose before the last step
+    SweepAndPrune<T> sweep_;
+    std::vector<ProxyPair> pairs_;
+    std::vector<Contact<T>> contacts_;            ///< sorted by (a.index, b.index)
+    std::vector<SolverBody<T>> solver_bodies_;    ///< slot 0: static stand-in
+    std::vector<BodyIntegration<T>> integration_;  ///< parallel to solver_bodies_
+    std::vector<std::uint32_t> solver_index_;     ///< per slot: index into solver_bodies_ (0: none)
+    std::vector<std::uint32_t> solver_slot_;      ///< per solver body: its slot
+    std::vector<ContactConstraint<T>> constraints_;
+    StepStats stats_;
+    T accumulator_{};
+};
+
+template <class T>
+BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDef<T>& def) {
+    const char* where = "World::create_body";
+    if (!shape) detail::report_invalid(where, "shape must not be null", 0.0);
+    if (!is_finite(def.position)) detail::report_invalid(where, "position must be finite, x + y + z", static_cast<double>(def.position.x + def.position.y + def.position.z));
+    if (!is_finite(def.orientation) || !(length_squared(def.orientation) > T(0)))
+        detail::report_invalid(where, "orientation must be a finite, non-zero quaternion, w", static_cast<double>(def.orientation.w));
+    if (!is_finite(def.linear_velocity)) detail::report_invalid(where, "linear_velocity must be finite, x + y + z", static_cast<double>(def.linear_velocity.x + def.linear_velocity.y + def.linear_velocity.z));
+    if (!is_finite(def.angular_velocity)) detail::report_invalid(where, "angular_velocity must be finite, x + y + z", static_cast<double>(def.angular_velocity.x + def.angular_velocity.y + def.angular_velocity.z));
+    detail::validate(def.material, where);
+    detail::require_non_negative(def.linear_damping, where, "linear_damping");
+    detail::require_non_negative(def.angular_damping, where, "angular_damping");
+    detail::require_finite(def.gravity_scale, where, "gravity_scale");
+    const Vec3<T> centre = interior_point(*shape);
+    if (length(centre) > T(1e-4) * bounding_radius(*shape))
+        detail::report_invalid(where, "the shape's centre of mass must be its local origin (make_convex_hull and ConvexPolyhedron::recentered() re-centre); distance (m)", static_cast<double>(length(centre)));
+
+    std::uint32_t slot;
+    if (!free_slots_.empty()) {
+        slot = free_slots_.back();
+        free_slots_.pop_back();
+    } else {
+        slot = static_cast<std::uint32_t>(bodies_.size());
+        bodies_.emplace_back();
+        bounds_.emplace_back();
+        previous_pose_.emplace_back();
+        solver_index_.push_back(0);
+    }
+    Body<T>& b = bodies_[slot];
+    const std::uint32_t generation = b.generation_;
+    b = Body<T>{};
+    b.generation_ = generation;
+    b.alive_ = true;
+    b.shape_ = std::move(shape);
+    b.type_ = def.type;
+    b.position_ = def.position;
+    b.orientation_ = normalized(def.orientation);
+    b.material_ = def.material;
+    b.linear_damping_ = def.linear_damping;
+    b.angular_damping_ = def.angular_damping;
+    b.gravity_scale_ = def.gravity_scale;
+    b.fast_ = def.fast;
+    b.sensor_ = def.sensor;
+    b.allow_sleep_ = def.allow_sleep;
+    b.layer_ = def.layer;
+    b.mask_ = def.mask;
+    b.user_data_ = def.user_data;
+    if (def.type != BodyType::static_body) {
+        b.linear_velocity_ = def.linear_velocity;
+        b.angular_velocity_ = def.angular_velocity;
+    }
+    if (def.type == BodyType::dynamic) {
+        MassProperties<T> m = def.mass > T(0) ? mass_properties(*b.shape_, T(1)) : mass_properties(*b.shape_, def.density);
+        if (def.mass > T(0)) {
+            detail::require_positive(def.mass, where, "mass");
+            m.inertia = m.inertia * (def.mass / m.mass);
+            m.mass = def.mass;
+        }
+        m.center = Vec3<T>::zero();
+        b.set_mass_properties(m);
+    }
+    b.moved_ = true;
+    bounds_[slot] = world_bounds(*b.shape_, b.transform());
+    previous_pose_[slot] = b.transform();
+    return {slot, b.generation_};
+}
+
+template <class T>
+void World<T>::destroy_body(BodyId id) {
+    const std::uint32_t slot = checked(id, "World::destroy_body");
+    wake_contacts_of(slot);
+    contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
+                                   [&](const Contact<T>& c) { return c.a.index == slot || c.b.index == slot; }),
+                    contacts_.end());
+    Body<T>& b = bodies_[slot];
+    b.alive_ = false;
+    b.shape_.reset();
+    ++b.generation_;
+    bounds_[slot] = Aabb<T>{};
+    free_slots_.push_back(slot);
+}
+
+template <class T>
+void World<T>::set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& orientation) {
+    const char* where = "World::set_transform";
+    const std::uint32_t slot = checked(id, where);
+    if (!is_finite(position)) detail::report_invalid(where, "position must be finite, x + y + z", static_cast<double>(position.x + position.y + position.z));
+    if (!is_finite(orientation) || !(length_squared(orientation) > T(0)))
+        detail::report_invalid(where, "orientation must be a finite, non-zero quaternion, w", static_cast<double>(orientation.w));
+    Body<T>& b = bodies_[slot];
+    b.position_ = position;
+    b.orientation_ = normalized(orientation);
+    b.moved_ = true;
+    b.wake();
+    previous_pose_[slot] = b.transform();
+    wake_contacts_of(slot);
+}
+
+template <class T>
+void World<T>::wake_contacts_of(std::uint32_t slot) {
+    for (const Contact<T>& c : contacts_) {
+        if (c.a.index == slot && contains(c.b)) bodies_[c.b.index].wake();
+        if (c.b.index == slot && contains(c.a)) bodies_[c.a.index].wake();
+    }
+}
+
+template <class T>
+Transform<T> World<T>::interpolated_transform(BodyId id) const {
+    const std::uint32_t slot = checked(id, "World::interpolated_transform");
+    const Body<T>& b = bodies_[slot];
+    const T f = clamp(interpolation_factor(), T(0), T(1));
+    const Transform<T>& p = previous_pose_[slot];
+    return {lerp(p.position, b.position_, f), slerp(p.orientation, b.orientation_, f)};
+}
+
+template <class T>
+int World<T>::update(T seconds) {
+    detail::require_non_negative(seconds, "World::update", "seconds");
+    accumulator_ += seconds;
+    const T dt = settings_.fixed_time_step;
+    int steps = 0;
+    while (accumulator_ >= dt && steps < settings_.max_steps_per_update) {
+        step(dt);
+        accumulator_ -= dt;
+        ++steps;
+    }
+    if (accumulator_ >= dt) accumulator_ = std::fmod(accumulator_, dt);  // dropped: too far behind
+    return steps;
+}
+
+template <class T>
+void World<T>::step(T dt) {
+    detail::require_positive(dt, "World::step", "dt");
+    stats_ = {};
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i)
+        if (bodies_[i].alive_) previous_pose_[i] = bodies_[i].transform();
+    update_bounds(dt);
+    if (settings_.broad_phase == BroadPhaseKind::brute_force) brute_force_pairs(bounds_, pairs_);
+    else sweep_.find_pairs(bounds_, pairs_);
+    stats_.broad_pairs = pairs_.size();
+    narrow_phase(dt);
+    wake_touched_islands();
+    prepare(dt);
+    solve(dt);
+    finish();
+    update_sleep(dt);
+}
+
+template <class T>
+void World<T>::update_bounds(T dt) {
+    // Fattened by the speculative distance and by the distance the body can travel this step,
+    // so contacts exist before the bodies meet.
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+        Body<T>& b = bodies_[i];
+        if (!b.alive_) continue;
+        if (b.type_ == BodyType::static_body && !b.moved_) continue;
+        const T reach = settings_.speculative_distance + length(b.linear_velocity_) * dt;
+        bounds_[i] = world_bounds(*b.shape_, b.transform()).expanded(reach);
+        b.moved_ = false;
+    }
+}
+
+template <class T>
+void World<T>::narrow_phase(T dt) {
+    std::vector<Contact<T>> next;
+    next.reserve(pairs_.size());
+    std::size_t old = 0;
+    for (const ProxyPair& pair : pairs_) {
+        // Merge-join with last step's contacts (both sorted by pair).
+        while (old < contacts_.size() &&
+               (contacts_[old].a.index < pair.a || (contacts_[old].a.index == pair.a && contacts_[old].b.index < pair.b)))
+            ++old;
+        const bool had = old < contacts_.size() && contacts_[old].a.index == pair.a && contacts_[old].b.index == pair.b;
+        Body<T>& a = bodies_[pair.a];
+        Body<T>& b = bodies_[pair.b];
+        if (a.type_ != BodyType::dynamic && b.type_ != BodyType::dynamic) continue;
+        if (!(a.layer_ & b.mask_) || !(b.layer_ & a.mask_)) continue;
+        if (!active(a) && !active(b)) {  // both asleep (or asleep on static): keep the contact as it was
+            if (had) next.push_back(contacts_[old]);
+            continue;
+        }
+        const T margin = settings_.speculative_distance + (length(a.linear_velocity_) + length(b.linear_velocity_)) * dt;
+        const ContactManifold<T> fresh = generate_contacts(*a.shape_, a.transform(), *b.shape_, b.transform(), margin);
+        if (fresh.count == 0) continue;  // apart: the contact (if any) ends
+        Contact<T> c;
+        if (had) c = contacts_[old];
+        c.a = id_of(pair.a);
+        c.b = id_of(pair.b);
+        c.friction = combined_friction(a.material_, b.material_);
+        c.restitution = combined_restitution(a.material_, b.material_);
+        c.sensor = a.sensor_ || b.sensor_;
+        if (fresh.count == 1 && had && c.manifold.count > 0)
+            c.manifold.merge_single(fresh.points[0], fresh.normal, a.transform(), b.transform(), settings_.contact_match_distance, margin);
+        else
+            c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
+        c.touching = c.manifold.touching();
+        next.push_back(c);
+    }
+    contacts_.swap(next);
+    stats_.contacts = contacts_.size();
+}
+
+template <class T>
+void World<T>::wake_touched_islands() {
+    // A sleeping body touched by an awake moving one wakes; waking spreads through touching
+    // contacts until it stops changing (the island wakes as a whole).
+    bool changed = true;
+    while (changed) {
+        changed = false;
+        for (const Contact<T>& c : contacts_) {
+            if (!c.touching && c.manifold.count == 0) continue;
+            Body<T>& a = bodies_[c.a.index];
+            Body<T>& b = bodies_[c.b.index];
+            if (active(a) && !b.awake_ && b.type_ == BodyType::dynamic) {
+                b.wake();
+                changed = true;
+            }
+            if (active(b) && !a.awake_ && a.type_ == BodyType::dynamic) {
+                a.wake();
+                changed = true;
+            }
+        }
+    }
+}
+
+template <class T>
+void World<T>::prepare(T dt) {
+    const T h = dt / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+    // Solver bodies: every awake dynamic or kinematic body; slot 0 stands for static ones.
+    solver_bodies_.assign(1, SolverBody<T>{});
+    integration_.assign(1, BodyIntegration<T>{});
+    solver_slot_.assign(1, 0);
+    std::fill(solver_index_.begin(), solver_index_.end(), 0u);
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+        const Body<T>& b = bodies_[i];
+        if (!b.alive_ || b.type_ == BodyType::static_body || !b.awake_) continue;
+        solver_index_[i] = static_cast<std::uint32_t>(solver_bodies_.size());
+        SolverBody<T> s;
+        s.v = b.linear_velocity_;
+        s.w = b.angular_velocity_;
+        s.inv_mass = b.inverse_mass_;
+        s.inv_inertia = b.type_ == BodyType::dynamic ? b.inverse_inertia_world() : Mat3<T>::zero();
+        BodyIntegration<T> in;
+        if (b.type_ == BodyType::dynamic) {
+            in.acceleration = settings_.gravity * b.gravity_scale_ + b.force_ * b.inverse_mass_;
+            in.angular_impulse_rate = s.inv_inertia * b.torque_;
+            in.inertia_local = b.inertia_local_;
+            in.gyroscopic = !b.isotropic_;
+            in.linear_damping = b.linear_damping_;
+            in.angular_damping = b.angular_damping_;
+        }
+        in.orientation0 = b.orientation_;
+        solver_bodies_.push_back(s);
+        integration_.push_back(in);
+        solver_slot_.push_back(i);
+    }
+    stats_.awake_bodies = solver_bodies_.size() - 1;
+
+    // Contact rows.
+    constraints_.clear();
+    const T contact_hertz = std::min(settings_.contact_hertz, T(0.125) / h);
+    const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
+    const Softness<T> soft_static =
+        Softness<T>::make(std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h), settings_.contact_damping_ratio, h);
+    for (std::uint32_t m = 0; m < contacts_.size(); ++m) {
+        const Contact<T>& contact = contacts_[m];
+        if (contact.sensor || contact.manifold.count == 0) continue;
+        const Body<T>& a = bodies_[contact.a.index];
+        const Body<T>& b = bodies_[contact.b.index];
+        ContactConstraint<T> c;
+        c.a = solver_index_[contact.a.index];
+        c.b = solver_index_[contact.b.index];
+        if (c.a == 0 && c.b == 0) continue;  // both asleep or static
+        const SolverBody<T>& sa = solver_bodies_[c.a];
+        const SolverBody<T>& sb = solver_bodies_[c.b];
+        c.manifold = m;
+        c.normal = contact.manifold.normal;
+        c.t1 = any_perpendicular(c.normal);
+        c.t2 = cross(c.normal, c.t1);
+        c.friction = contact.friction;
+        c.restitution = contact.restitution;
+        c.softness = (a.type_ == BodyType::dynamic && b.type_ == BodyType::dynamic) ? soft : soft_static;
+        if (settings_.solver == SolverMode::baumgarte) c.softness = Softness<T>{};
+        c.count = contact.manifold.count;
+        const Vec3<T> xa = a.position_, xb = b.position_;
+        Vec3<T> centre{};
+        for (int i = 0; i < c.count; ++i) {
+            const ContactPoint<T>& cp = contact.manifold.points[static_cast<std::size_t>(i)];
+            ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
+            const Vec3<T> pa = a.world_point(cp.local_a), pb = b.world_point(cp.local_b);
+            const Vec3<T> mid = (pa + pb) * T(0.5);
+            centre += mid;
+            p.r_a = mid - xa;
+            p.r_b = mid - xb;
+            const T separation = dot(pb - pa, c.normal);
+            p.adjusted_separation = separation - dot(p.r_b - p.r_a, c.normal);
+            const Vec3<T> rna = cross(p.r_a, c.normal), rnb = cross(p.r_b, c.normal);
+            const T k = sa.inv_mass + sb.inv_mass + dot(rna, sa.inv_inertia * rna) + dot(rnb, sb.inv_inertia * rnb);
+            p.normal_mass = k > T(0) ? T(1) / k : T(0);
+            p.normal_impulse = settings_.warm_starting ? cp.normal_impulse : T(0);
+            p.max_normal_impulse = T(0);
+            p.relative_velocity = dot(sb.velocity_at(p.r_b) - sa.velocity_at(p.r_a), c.normal);
+        }
+        centre /= static_cast<T>(c.count);
+        c.rc_a = centre - xa;
+        c.rc_b = centre - xb;
+        T lever = T(0);
+        for (int i = 0; i < c.count; ++i) {
+            const Vec3<T> off = (c.points[static_cast<std::size_t>(i)].r_a + xa) - centre;
+            lever += length(off - c.normal * dot(off, c.normal));
+        }
+        c.twist_lever = lever / static_cast<T>(c.count);
+        // The 2×2 tangent effective mass K and its inverse.
+        const Vec3<T> a1 = cross(c.rc_a, c.t1), a2 = cross(c.rc_a, c.t2), b1 = cross(c.rc_b, c.t1), b2 = cross(c.rc_b, c.t2);
+        const T base = sa.inv_mass + sb.inv_mass;
+        const T k11 = base + dot(a1, sa.inv_inertia * a1) + dot(b1, sb.inv_inertia * b1);
+        const T k12 = dot(a1, sa.inv_inertia * a2) + dot(b1, sb.inv_inertia * b2);
+        const T k22 = base + dot(a2, sa.inv_inertia * a2) + dot(b2, sb.inv_inertia * b2);
+        const T det = k11 * k22 - k12 * k12;
+        if (det > T(0)) {
+            c.k11 = k22 / det;
+            c.k12 = -k12 / det;
+            c.k22 = k11 / det;
+        }
+        const T kt = dot(c.normal, (sa.inv_inertia + sb.inv_inertia) * c.normal);
+        c.twist_mass = kt > T(0) ? T(1) / kt : T(0);
+        if (settings_.warm_starting) {
+            c.friction_1 = dot(contact.manifold.friction_impulse, c.t1);
+            c.friction_2 = dot(contact.manifold.friction_impulse, c.t2);
+            c.twist_impulse = contact.manifold.twist_impulse;
+        }
+        constraints_.push_back(c);
+        stats_.contact_points += static_cast<std::size_t>(c.count);
+    }
+}
+
+template <class T>
+void World<T>::solve(T dt) {
+    const bool soft = settings_.solver == SolverMode::soft_step;
+    const int substeps = soft ? settings_.substeps : 1;
+    const T h = dt / static_cast<T>(substeps);
+    SolvePass<T> pass{T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
+    const T max_rotation = settings_.max_rotation_per_step / static_cast<T>(substeps);
+    for (int sub = 0; sub < substeps; ++sub) {
+        for (std::size_t i = 1; i < solver_bodies_.size(); ++i) integrate_velocity(solver_bodies_[i], integration_[i], h);
+        if (settings_.warm_starting) warm_start(constraints_, solver_bodies_);
+        pass.use_bias = true;
+        for (int it = 0; it < settings_.velocity_iterations; ++it) solve_contacts(constraints_, solver_bodies_, pass);
+        for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
+            const Body<T>& b = bodies_[solver_slot_[i]];
+            const T max_speed = b.fast_ ? ScalarTraits<T>::max : settings_.max_linear_speed;
+            integrate_position(solver_bodies_[i], h, max_speed, max_rotation);
+        }
+        pass.use_bias = false;
+        for (int it = 0; it < settings_.relax_iterations; ++it) solve_contacts(constraints_, solver_bodies_, pass);
+    }
+    apply_restitution(constraints_, solver_bodies_, settings_.restitution_threshold);
+}
+
+template <class T>
+void World<T>::finish() {
+    for (const ContactConstraint<T>& c : constraints_) {
+        Manifold<T>& m = contacts_[c.manifold].manifold;
+        for (int i = 0; i < c.count; ++i) {
+            m.points[static_cast<std::size_t>(i)].normal_impulse = c.points[static_cast<std::size_t>(i)].normal_impulse;
+            m.points[static_cast<std::size_t>(i)].max_normal_impulse = c.points[static_cast<std::size_t>(i)].max_normal_impulse;
+        }
+        m.friction_impulse = c.t1 * c.friction_1 + c.t2 * c.friction_2;
+        m.twist_impulse = c.twist_impulse;
+    }
+    for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
+        Body<T>& b = bodies_[solver_slot_[i]];
+        const SolverBody<T>& s = solver_bodies_[i];
+        b.position_ += s.dp;
+        b.orientation_ = normalized(s.dq * b.orientation_);
+        b.linear_velocity_ = s.v;
+        b.angular_velocity_ = s.w;
+        b.force_ = Vec3<T>::zero();
+        b.torque_ = Vec3<T>::zero();
+    }
+}
+
+template <class T>
+void World<T>::update_sleep(T dt) {
+    if (!settings_.allow_sleeping) return;
+    // Islands: dynamic bodies joined by touching contacts (union–find with path halving).
+    std::vector<std::uint32_t> parent(bodies_.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto find = [&](std::uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    for (const Contact<T>& c : contacts_) {
+        if (!c.touching || c.sensor) continue;
+        const Body<T>& a = bodies_[c.a.index];
+        const Body<T>& b = bodies_[c.b.index];
+        if (a.type_ != BodyType::dynamic || b.type_ != BodyType::dynamic) continue;
+        parent[find(c.a.index)] = find(c.b.index);
+    }
+    // A body's sleep clock runs while it is slow; an island sleeps when all its clocks passed
+    // sleep_time and none refuses to sleep or touches a moving kinematic body.
+    const T lin_sq = settings_.sleep_linear_speed * settings_.sleep_linear_speed;
+    const T ang_sq = settings_.sleep_angular_speed * settings_.sleep_angular_speed;
+    std::vector<T> island_min(bodies_.size(), ScalarTraits<T>::infinity);
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+        Body<T>& b = bodies_[i];
+        if (!b.alive_ || b.type_ != BodyType::dynamic || !b.awake_) continue;
+        const bool slow = length_squared(b.linear_velocity_) < lin_sq && length_squared(b.angular_velocity_) < ang_sq;
+        b.sleep_time_ = (slow && b.allow_sleep_) ? b.sleep_time_ + dt : T(0);
+        const std::uint32_t root = find(i);
+        island_min[root] = std::min(island_min[root], b.sleep_time_);
+    }
+    for (const Contact<T>& c : contacts_) {  // touching a moving kinematic body keeps an island awake
+        if (!c.touching) continue;
+        for (const auto& [k, d] : {std::pair{c.a.index, c.b.index}, std::pair{c.b.index, c.a.index}}) {
+            const Body<T>& kin = bodies_[k];
+            if (kin.type_ == BodyType::kinematic && (length_squared(kin.linear_velocity_) > T(0) || length_squared(kin.angular_velocity_) > T(0)))
+                island_min[find(d)] = T(0);
+        }
+    }
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+        Body<T>& b = bodies_[i];
+        if (!b.alive_ || b.type_ != BodyType::dynamic || !b.awake_) continue;
+        if (island_min[find(i)] >= settings_.sleep_time) {
+            b.awake_ = false;
+            b.linear_velocity_ = Vec3<T>::zero();
+            b.angular_velocity_ = Vec3<T>::zero();
+        }
+    }
+}
+
+namespace f32 { using World = xeno::World<float>; using Contact = xeno::Contact<float>; }
+namespace f64 { using World = xeno::World<double>; using Contact = xeno::Contact<double>; }
+
+}  // namespace xeno

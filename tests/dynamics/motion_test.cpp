@@ -1,0 +1,217 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Closed-form physics: free fall, resting, sliding to a stop, inclines, bouncing, momentum and
+// angular momentum, the Dzhanibekov flip. Unit boxes (half extent 0.5) unless said; no sleeping.
+#include "support/approx.hpp"
+#include "support/sim.hpp"
+
+using namespace xeno;
+using xeno::test::simulate;
+
+namespace {
+template <class T>
+BodyId ground_with_friction(World<T>& w, T mu) {
+    return scenes::add_ground(w, T(200), mu);
+}
+template <class T>
+BodyId box_with(World<T>& w, const Vec3<T>& position, T mu, T e = T(0)) {
+    BodyDef<T> def;
+    def.position = position;
+    def.material.friction = mu;
+    def.material.restitution = e;
+    return w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("free fall follows p0 + v0 t + g t^2 / 2 to integrator accuracy", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    BodyDef<T> def;
+    def.position = {T(1), T(100), T(-2)};
+    def.linear_velocity = {T(3), T(4), T(0)};
+    const BodyId id = w.create_body(Sphere<T>(T(0.5)), def);
+    const T t = T(2);
+    simulate(w, t);
+    const Vec3<T> g = w.settings().gravity;
+    const Vec3<T> exact = def.position + def.linear_velocity * t + g * (T(0.5) * t * t);
+    // Symplectic Euler with substep h lands g h t / 2 past the exact parabola.
+    const T h = w.settings().fixed_time_step / static_cast<T>(w.settings().substeps);
+    const Vec3<T> expected = exact + g * (T(0.5) * h * t);
+    CHECK(length(w.body(id).position() - expected) < T(2e-3));
+    CHECK(length(w.body(id).position() - exact) < T(0.5) * T(9.81) * h * t * T(1.01));
+    CHECK(test::near(w.body(id).linear_velocity().y, T(4) - T(9.81) * t, T(1e-4)));
+}
+
+TEST_CASE_TEMPLATE("a box resting on the ground drifts under a millimetre and keeps four points for 10 s", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    scenes::add_ground(w);
+    const BodyId box = box_with(w, Vec3<T>{T(0.3), T(0.5), T(-0.2)}, T(0.6));
+    const Vec3<T> start = w.body(box).position();
+    int min_points = 4, max_points = 0;
+    simulate(w, T(10), [&](int) {
+        const int n = w.contacts().empty() ? 0 : w.contacts()[0].manifold.count;
+        min_points = std::min(min_points, n);
+        max_points = std::max(max_points, n);
+    });
+    CHECK(length(w.body(box).position() - start) < T(1e-3));
+    CHECK(min_points == 4);
+    CHECK(max_points == 4);
+    CHECK(std::abs(test::yaw(w.body(box).orientation())) < T(1e-4));
+}
+
+TEST_CASE_TEMPLATE("a box sliding at 2 and 5 m/s with mu 0.5 stops within 2 % of v^2/(2 mu g)", T, float, double) {
+    for (const T v0 : {T(2), T(5)}) {
+        World<T> w(test::awake_settings<T>());
+        ground_with_friction(w, T(0.5));
+        const BodyId box = box_with(w, Vec3<T>{T(0), T(0.5), T(0)}, T(0.5));
+        simulate(w, T(0.5));  // settle on the ground first: no landing transient in the distance
+        const Vec3<T> start = w.body(box).position();
+        w.body(box).set_linear_velocity({v0, T(0), T(0)});
+        T yaw_max = T(0);
+        simulate(w, T(3), [&](int) { yaw_max = std::max(yaw_max, std::abs(test::yaw(w.body(box).orientation()))); });
+        const T distance = w.body(box).position().x - start.x;
+        const T expected = v0 * v0 / (T(2) * T(0.5) * T(9.81));
+        CAPTURE(v0);
+        CAPTURE(distance);
+        CAPTURE(expected);
+        CHECK(std::abs(distance - expected) < T(0.02) * expected);
+        CHECK(length(w.body(box).linear_velocity()) < T(1e-3));
+        // A symmetric box sliding straight does not turn about the vertical.
+        CHECK(yaw_max < radians(T(0.5)));
+        CHECK(std::abs(w.body(box).position().z - start.z) < T(1e-3));
+    }
+}
+
+TEST_CASE_TEMPLATE("a box on an incline stays below the friction angle and slides above it", T, float, double) {
+    const T mu = T(0.5);
+    for (const T offset : {T(-0.05), T(0.05)}) {
+        World<T> w(test::awake_settings<T>());
+        const T angle = std::atan(mu + offset);
+        const Quat<T> tilt = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);
+        BodyDef<T> ramp;
+        ramp.type = BodyType::static_body;
+        ramp.orientation = tilt;
+        ramp.material.friction = mu;
+        w.create_body(Box<T>(T(20), T(0.5), T(5)), ramp);
+        BodyDef<T> def;
+        def.orientation = tilt;
+        def.position = rotate(tilt, Vec3<T>{T(0), T(1.0), T(0)});
+        def.material.friction = mu;
+        const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+        simulate(w, T(0.5));
+        const Vec3<T> start = w.body(box).position();
+        simulate(w, T(10));
+        const T moved = length(w.body(box).position() - start);
+        CAPTURE(offset);
+        CAPTURE(moved);
+        if (offset < T(0)) CHECK(moved < T(1e-3));
+        else CHECK(moved > T(1));
+    }
+}
+
+TEST_CASE_TEMPLATE("a box dropped from h with restitution e bounces to e^2 h within 5 %", T, float, double) {
+    const T h = T(2), e = T(0.6);
+    World<T> w(test::awake_settings<T>());
+    BodyDef<T> g;
+    g.type = BodyType::static_body;
+    g.position = {T(0), T(-0.5), T(0)};
+    g.material.restitution = e;
+    w.create_body(Box<T>(T(10), T(0.5), T(10)), g);
+    BodyDef<T> def;
+    def.position = {T(0), T(0.5) + h, T(0)};
+    def.material.restitution = e;
+    const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+    bool bounced = false;
+    T apex = T(0);
+    simulate(w, T(2.5), [&](int) {
+        const Body<T>& b = w.body(box);
+        if (b.linear_velocity().y > T(0.5)) bounced = true;
+        if (bounced) apex = std::max(apex, b.position().y - T(0.5));
+    });
+    REQUIRE(bounced);
+    CAPTURE(apex);
+    CHECK(std::abs(apex - e * e * h) < T(0.05) * e * e * h);
+}
+
+TEST_CASE_TEMPLATE("with restitution 1 a box never bounces higher than it started, over 10 bounces", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    BodyDef<T> g;
+    g.type = BodyType::static_body;
+    g.position = {T(0), T(-0.5), T(0)};
+    g.material.restitution = T(1);
+    w.create_body(Box<T>(T(10), T(0.5), T(10)), g);
+    BodyDef<T> def;
+    def.position = {T(0), T(2.5), T(0)};
+    def.material.restitution = T(1);
+    const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+    int bounces = 0;
+    T highest = T(0);
+    T previous_vy = T(0);
+    simulate(w, T(12), [&](int) {
+        const Body<T>& b = w.body(box);
+        if (previous_vy < T(0) && b.linear_velocity().y > T(0)) ++bounces;
+        previous_vy = b.linear_velocity().y;
+        if (bounces > 0) highest = std::max(highest, b.position().y);
+    });
+    CHECK(bounces >= 10);
+    CAPTURE(highest);
+    CHECK(highest <= T(2.5) + T(1e-3));
+    CHECK(highest > T(2.0));  // and it does bounce back most of the way
+}
+
+TEST_CASE_TEMPLATE("momentum is conserved when two bodies collide without gravity", T, float, double) {
+    WorldSettings<T> s = test::awake_settings<T>();
+    s.gravity = Vec3<T>::zero();
+    World<T> w(s);
+    BodyDef<T> a;
+    a.position = {T(-2), T(0), T(0)};
+    a.linear_velocity = {T(3), T(0.2), T(0)};
+    a.material.restitution = T(0.5);
+    BodyDef<T> b;
+    b.position = {T(2), T(0.3), T(0.1)};
+    b.linear_velocity = {T(-1), T(0), T(0)};
+    b.density = T(2500);
+    const BodyId ia = w.create_body(Box<T>(T(0.5), T(0.4), T(0.3)), a);
+    const BodyId ib = w.create_body(Sphere<T>(T(0.6)), b);
+    auto momentum = [&] { return w.body(ia).linear_velocity() * w.body(ia).mass() + w.body(ib).linear_velocity() * w.body(ib).mass(); };
+    const Vec3<T> p0 = momentum();
+    bool touched = false;
+    simulate(w, T(2), [&](int) { touched |= !w.contacts().empty() && w.contacts()[0].touching; });
+    CHECK(touched);
+    CHECK(length(momentum() - p0) < T(1e-4) * length(p0));
+    CHECK(w.body(ib).linear_velocity().x > T(-1));  // B was pushed
+}
+
+TEST_CASE_TEMPLATE("a torque-free box keeps its angular momentum within 1 % over 10 s", T, float, double) {
+    WorldSettings<T> s = test::awake_settings<T>();
+    s.gravity = Vec3<T>::zero();
+    World<T> w(s);
+    BodyDef<T> def;
+    def.angular_velocity = {T(2), T(3), T(-1.5)};  // not about a principal axis
+    const BodyId id = w.create_body(Box<T>(T(0.2), T(0.5), T(0.9)), def);
+    auto angular_momentum = [&] {
+        const Body<T>& b = w.body(id);
+        const Mat3<T> r = to_matrix(b.orientation());
+        return r * (b.local_inertia() * (transpose(r) * b.angular_velocity()));
+    };
+    const Vec3<T> l0 = angular_momentum();
+    T worst = T(0);
+    simulate(w, T(10), [&](int) { worst = std::max(worst, length(angular_momentum() - l0) / length(l0)); });
+    CAPTURE(worst);
+    CHECK(worst < T(0.01));
+}
+
+TEST_CASE_TEMPLATE("spun near its intermediate axis a free box flips (Dzhanibekov)", T, float, double) {
+    WorldSettings<T> s = test::awake_settings<T>();
+    s.gravity = Vec3<T>::zero();
+    World<T> w(s);
+    BodyDef<T> def;
+    def.angular_velocity = {T(0.01), T(5), T(0.01)};  // y is the intermediate axis of (0.2, 0.5, 0.9)
+    const BodyId id = w.create_body(Box<T>(T(0.2), T(0.5), T(0.9)), def);
+    T min_alignment = T(1);
+    simulate(w, T(10), [&](int) {
+        const Vec3<T> axis = rotate(w.body(id).orientation(), Vec3<T>::unit_y());
+        min_alignment = std::min(min_alignment, dot(axis, Vec3<T>::unit_y()));
+    });
+    CHECK(min_alignment < T(-0.9));  // the body's y axis turned over
+}
