@@ -703,16 +703,18 @@ HullCheck<W> check_hull_faces(const std::vector<Vec3<W>>& v, const std::vector<s
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const auto& face = faces[f];
         Vec3<W> centre = Vec3<W>::zero(), newell = Vec3<W>::zero();
+        W longest_edge = W(0);
         for (std::uint32_t i : face) centre += v[i];
         centre /= static_cast<W>(face.size());
         for (std::size_t k = 0; k < face.size(); ++k) {
             const Vec3<W> p = v[face[k]] - reference, q = v[face[(k + 1) % face.size()]] - reference;
             newell += cross(p, q);
+            longest_edge = std::max(longest_edge, length(q - p));
             if (k > 0 && k + 1 < face.size())
                 out.volume += triple(v[face[0]] - reference, p, q) / W(6);
         }
         out.area[f] = length(newell) / W(2);
-        bool bad = !(length(newell) > W(1.05) * tolerance * scale);
+        bool bad = !(length(newell) > W(1.05) * tolerance * longest_edge);  // as ConvexPolyhedron: width
         if (!bad) {
             const Vec3<W> n = normalized(newell);
             for (std::uint32_t i : face) bad = bad || std::abs(dot(n, v[i] - centre)) > tolerance / W(2);

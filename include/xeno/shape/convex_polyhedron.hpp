@@ -169,18 +169,23 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
         const std::string face_name = "face " + std::to_string(f);
         if (face.size() < 3) detail::report_invalid(where, (face_name + " needs 3 or more vertices, count").c_str(), static_cast<double>(face.size()));
         Vec3<T> newell = Vec3<T>::zero(), centre = Vec3<T>::zero();
+        T longest_edge = T(0);
         for (std::size_t k = 0; k < face.size(); ++k) {
             if (face[k] >= n) detail::report_invalid(where, (face_name + " has a vertex index out of range").c_str(), static_cast<double>(face[k]));
             const Vec3<T>& p = vertices_[face[k]];
             const Vec3<T>& q = vertices_[face[(k + 1) % face.size()]];
             newell += cross(p, q);
             centre += p;
+            longest_edge = std::max(longest_edge, length(q - p));
             directed_edges.emplace_back(face[k], face[(k + 1) % face.size()]);
         }
         centre /= static_cast<T>(face.size());
+        // A face is degenerate when it is thinner than the tolerance (twice its area over its
+        // longest edge): small but well-shaped faces are fine, slivers are not.
         const std::optional<Vec3<T>> normal = try_normalized(newell);
-        if (!normal || length(newell) <= tolerance * scale)
-            detail::report_invalid(where, (face_name + " has zero area; its area (m^2)").c_str(), static_cast<double>(length(newell) / 2));
+        if (!normal || !(length(newell) > tolerance * longest_edge))
+            detail::report_invalid(where, (face_name + " is degenerate (zero area or a sliver); its width (m)").c_str(),
+                                   static_cast<double>(longest_edge > T(0) ? length(newell) / longest_edge : T(0)));
         Face out{static_cast<std::uint32_t>(face_indices_.size()), static_cast<std::uint32_t>(face.size()), *normal, dot(*normal, centre)};
         for (std::uint32_t index : face) {
             const T off_plane = dot(*normal, vertices_[index]) - out.offset;
