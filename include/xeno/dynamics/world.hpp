@@ -176,6 +176,18 @@ BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDe
     if (length(centre) > T(1e-4) * bounding_radius(*shape))
         detail::report_invalid(where, "the shape's centre of mass must be its local origin (make_convex_hull and ConvexPolyhedron::recentered() re-centre); distance (m)", static_cast<double>(length(centre)));
 
+    // Mass properties before a slot is taken, so a rejected body leaves no trace.
+    MassProperties<T> mass;
+    if (def.type == BodyType::dynamic) {
+        detail::require_non_negative(def.mass, where, "mass");
+        mass = def.mass > T(0) ? mass_properties(*shape, T(1)) : mass_properties(*shape, def.density);
+        if (def.mass > T(0)) {
+            mass.inertia = mass.inertia * (def.mass / mass.mass);
+            mass.mass = def.mass;
+        }
+        mass.center = Vec3<T>::zero();
+    }
+
     std::uint32_t slot;
     if (!free_slots_.empty()) {
         slot = free_slots_.back();
@@ -210,16 +222,7 @@ BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDe
         b.linear_velocity_ = def.linear_velocity;
         b.angular_velocity_ = def.angular_velocity;
     }
-    if (def.type == BodyType::dynamic) {
-        MassProperties<T> m = def.mass > T(0) ? mass_properties(*b.shape_, T(1)) : mass_properties(*b.shape_, def.density);
-        if (def.mass > T(0)) {
-            detail::require_positive(def.mass, where, "mass");
-            m.inertia = m.inertia * (def.mass / m.mass);
-            m.mass = def.mass;
-        }
-        m.center = Vec3<T>::zero();
-        b.set_mass_properties(m);
-    }
+    if (def.type == BodyType::dynamic) b.set_mass_properties(mass);
     b.moved_ = true;
     bounds_[slot] = world_bounds(*b.shape_, b.transform());
     previous_pose_[slot] = b.transform();

@@ -1,0 +1,194 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// The world's contract: handles, bad input at the door, the fixed-step accumulator, kinds of
+// bodies, forces and impulses, destroying bodies mid-simulation.
+#include "support/approx.hpp"
+#include "support/sim.hpp"
+
+using namespace xeno;
+using xeno::test::near;
+
+TEST_CASE_TEMPLATE("a destroyed body's handle is stale and every use of it is reported", T, float, double) {
+    World<T> w;
+    const BodyId id = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)));
+    CHECK(w.contains(id));
+    w.destroy_body(id);
+    CHECK_FALSE(w.contains(id));
+    CHECK_THROWS_AS(w.body(id), InvalidArgument);
+    CHECK_THROWS_AS(w.destroy_body(id), InvalidArgument);
+    CHECK_THROWS_AS(w.set_transform(id, Vec3<T>{}, Quat<T>{}), InvalidArgument);
+    CHECK_THROWS_AS(w.body(BodyId{}), InvalidArgument);
+    // The slot is reused with a new generation: the old handle stays stale.
+    const BodyId again = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)));
+    CHECK(again.index == id.index);
+    CHECK(again.generation != id.generation);
+    CHECK_FALSE(w.contains(id));
+    CHECK(w.contains(again));
+    try {
+        (void)w.body(id);
+    } catch (const InvalidArgument& e) {
+        CHECK(std::string(e.what()).find("stale") != std::string::npos);
+    }
+}
+
+TEST_CASE_TEMPLATE("bad input at body creation and stepping is reported, never simulated", T, float, double) {
+    World<T> w;
+    const T nan = std::numeric_limits<T>::quiet_NaN(), inf = std::numeric_limits<T>::infinity();
+    const Box<T> cube(T(0.5), T(0.5), T(0.5));
+    BodyDef<T> d;
+    d.position = {nan, T(0), T(0)};
+    CHECK_THROWS_AS(w.create_body(cube, d), InvalidArgument);
+    d = {};
+    d.orientation = {T(0), T(0), T(0), T(0)};
+    CHECK_THROWS_AS(w.create_body(cube, d), InvalidArgument);
+    d = {};
+    d.linear_velocity = {T(0), inf, T(0)};
+    CHECK_THROWS_AS(w.create_body(cube, d), InvalidArgument);
+    d = {};
+    d.angular_velocity = {nan, T(0), T(0)};
+    CHECK_THROWS_AS(w.create_body(cube, d), InvalidArgument);
+    d = {};
+    d.density = T(0);
+    CHECK_THROWS_AS(w.create_body(cube, d), InvalidArgument);
+    d.density = T(-5);
+    CHECK_THROWS_AS(w.create_body(cube, d), InvalidArgument);
+    d = {};
+    d.material.friction = T(-1);
+    CHECK_THROWS_AS(w.create_body(cube, d), InvalidArgument);
+    d = {};
+    d.material.restitution = T(1.5);
+    CHECK_THROWS_AS(w.create_body(cube, d), InvalidArgument);
+    CHECK_THROWS_AS(w.create_body(std::shared_ptr<const Shape<T>>{}, BodyDef<T>{}), InvalidArgument);
+    // A polyhedron whose centre of mass is not its local origin.
+    const ConvexPolyhedron<T> unit = make_box_polyhedron(Vec3<T>{T(0.5), T(0.5), T(0.5)});
+    std::vector<Vec3<T>> moved;
+    for (const Vec3<T>& v : unit.vertices()) moved.push_back(v + Vec3<T>{T(3), T(0), T(0)});
+    std::vector<std::vector<std::uint32_t>> faces;
+    for (const auto& f : unit.faces()) faces.emplace_back(unit.face_indices().begin() + f.first, unit.face_indices().begin() + f.first + f.count);
+    CHECK_THROWS_AS(w.create_body(ConvexPolyhedron<T>(moved, faces)), InvalidArgument);
+    CHECK(w.body_count() == 0);
+    // dt must be finite and positive.
+    CHECK_THROWS_AS(w.step(T(0)), InvalidArgument);
+    CHECK_THROWS_AS(w.step(T(-1) / T(60)), InvalidArgument);
+    CHECK_THROWS_AS(w.step(nan), InvalidArgument);
+    CHECK_THROWS_AS(w.step(inf), InvalidArgument);
+    CHECK_THROWS_AS(w.update(T(-1)), InvalidArgument);
+    // Forces, velocities and poses at the door.
+    const BodyId id = w.create_body(cube);
+    CHECK_THROWS_AS(w.body(id).apply_force(Vec3<T>{nan, T(0), T(0)}), InvalidArgument);
+    CHECK_THROWS_AS(w.body(id).apply_impulse_at(Vec3<T>{T(1), T(0), T(0)}, Vec3<T>{inf, T(0), T(0)}), InvalidArgument);
+    CHECK_THROWS_AS(w.body(id).set_linear_velocity(Vec3<T>{T(0), nan, T(0)}), InvalidArgument);
+    CHECK_THROWS_AS(w.set_transform(id, Vec3<T>{T(0), inf, T(0)}, Quat<T>{}), InvalidArgument);
+    WorldSettings<T> bad;
+    bad.substeps = 0;
+    CHECK_THROWS_AS(World<T>{bad}, InvalidArgument);
+    bad = {};
+    bad.fixed_time_step = nan;
+    CHECK_THROWS_AS(World<T>{bad}, InvalidArgument);
+}
+
+TEST_CASE_TEMPLATE("update runs whole fixed steps, caps them and leaves an interpolation factor", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    BodyDef<T> d;
+    d.linear_velocity = {T(1), T(0), T(0)};
+    d.gravity_scale = T(0);
+    const BodyId id = w.create_body(Sphere<T>(T(0.5)), d);
+    CHECK(w.update(T(1) / T(60) * T(2.5)) == 2);
+    CHECK(near(w.interpolation_factor(), T(0.5), T(1e-3)));
+    CHECK(near(w.interpolated_transform(id).position.x, T(1.5) / T(60), T(1e-4)));
+    CHECK(w.update(T(10)) == w.settings().max_steps_per_update);  // the rest is dropped
+    CHECK(w.interpolation_factor() < T(1));
+    CHECK(near(w.body(id).position().x, T(10) / T(60), T(1e-4)));
+}
+
+TEST_CASE_TEMPLATE("static bodies never move and kinematic bodies push dynamic ones", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    const BodyId ground = scenes::add_ground(w);
+    const BodyId box = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5), T(0)});
+    BodyDef<T> k;
+    k.type = BodyType::kinematic;
+    k.position = {T(-2), T(0.5), T(0)};
+    k.linear_velocity = {T(1), T(0), T(0)};
+    const BodyId pusher = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), k);
+    test::simulate(w, T(3));
+    CHECK(w.body(ground).position() == Vec3<T>{T(0), T(-0.5), T(0)});
+    CHECK(near(w.body(pusher).position().x, T(1), T(1e-3)));       // moved by its velocity only
+    CHECK(near(w.body(pusher).linear_velocity().x, T(1)));
+    CHECK(w.body(box).position().x > T(1.9));                       // pushed ahead of it
+    CHECK(w.body(pusher).mass() == std::numeric_limits<T>::infinity());
+}
+
+TEST_CASE_TEMPLATE("forces and impulses at a point change velocity and spin as Newton says", T, float, double) {
+    WorldSettings<T> s = test::awake_settings<T>();
+    s.gravity = Vec3<T>::zero();
+    World<T> w(s);
+    const BodyId id = w.create_body(Sphere<T>(T(0.5)));
+    Body<T>& b = w.body(id);
+    const T m = b.mass();
+    CHECK(near(m, T(1000) * T(4) / T(3) * ScalarTraits<T>::pi * T(0.125), T(1e-4)));
+    b.apply_impulse_at(Vec3<T>{T(0), T(0), T(2)}, Vec3<T>{T(0.5), T(0), T(0)});
+    CHECK(near(b.linear_velocity(), Vec3<T>{T(0), T(0), T(2) / m}));
+    const T inertia = T(0.4) * m * T(0.25);
+    CHECK(near(b.angular_velocity(), Vec3<T>{T(0), T(-1) / inertia, T(0)}));  // r × J = (0.5,0,0) × (0,0,2)
+    b.set_linear_velocity({});
+    b.set_angular_velocity({});
+    b.apply_force_at(Vec3<T>{T(m), T(0), T(0)}, w.body(id).position() + Vec3<T>{T(0), T(0.5), T(0)});
+    w.step(T(1) / T(60));
+    CHECK(near(w.body(id).linear_velocity().x, T(1) / T(60), T(1e-4)));    // a = F/m = 1 m/s²
+    CHECK(w.body(id).angular_velocity().z < T(0));                         // (0, 0.5, 0) × (m, 0, 0) points along -z
+    CHECK(w.body(id).force() == Vec3<T>::zero());                          // forces last one step
+    // World/body frame helpers round-trip.
+    const Vec3<T> p{T(0.1), T(0.2), T(0.3)};
+    CHECK(near(w.body(id).local_point(w.body(id).world_point(p)), p));
+    CHECK(near(w.body(id).local_vector(w.body(id).world_vector(p)), p));
+}
+
+TEST_CASE_TEMPLATE("destroying a body under another leaves a consistent world and the top one falls", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    scenes::add_ground(w);
+    const BodyId bottom = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5), T(0)});
+    const BodyId top = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(1.5), T(0)});
+    test::simulate(w, T(1));
+    REQUIRE(w.contacts().size() == 2);
+    w.destroy_body(bottom);
+    for (const Contact<T>& c : w.contacts()) {
+        CHECK(c.a != bottom);
+        CHECK(c.b != bottom);
+    }
+    CHECK_FALSE(w.contains(bottom));
+    test::simulate(w, T(2));
+    CHECK(near(w.body(top).position().y, T(0.5), T(0.01)));  // on the ground now
+    CHECK(w.contacts().size() == 1);
+}
+
+TEST_CASE_TEMPLATE("a resting island sleeps, and wakes when touched or pushed", T, float, double) {
+    World<T> w;  // sleeping on
+    scenes::add_ground(w);
+    const BodyId box = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5), T(0)});
+    test::simulate(w, T(2));
+    CHECK_FALSE(w.body(box).awake());
+    CHECK(w.last_step_stats().awake_bodies == 0);
+    // Pushed: awake again, and it moves.
+    w.body(box).apply_linear_impulse(Vec3<T>{T(3000), T(0), T(0)});  // 3 m/s on 1000 kg
+    CHECK(w.body(box).awake());
+    test::simulate(w, T(0.2));
+    CHECK(w.body(box).position().x > T(0.05));
+    test::simulate(w, T(3));
+    CHECK_FALSE(w.body(box).awake());
+    // Touched by a falling body: wakes.
+    const T x = w.body(box).position().x;
+    const BodyId ball = w.create_body(Sphere<T>(T(0.3)), [&] {
+        BodyDef<T> d;
+        d.position = {x + T(0.3), T(3), T(0)};
+        return d;
+    }());
+    bool woke = false;
+    test::simulate(w, T(1), [&](int) { woke |= w.body(box).awake(); });
+    CHECK(woke);
+    CHECK(w.contains(ball));
+    // Opting out keeps it awake.
+    w.body(box).set_allow_sleep(false);
+    test::simulate(w, T(3));
+    CHECK(w.body(box).awake());
+}
