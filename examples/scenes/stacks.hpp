@@ -14,8 +14,8 @@ namespace xeno::scenes {
 /// `height` unit boxes (half extent 0.5) in a column at x = 0.
 template <class T>
 Scene column(World<T>& world, int height = 10) {
-    add_ground(world);
     Scene s;
+    s.ground = add_ground(world);
     for (int i = 0; i < height; ++i)
         s.bodies.push_back(add_box(world, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5) + T(i), T(0)}));
     s.eye = {7, 0.6 * height, 10};
@@ -26,8 +26,8 @@ Scene column(World<T>& world, int height = 10) {
 /// A pyramid of unit boxes with `base` boxes in the bottom row: base (base + 1) / 2 boxes.
 template <class T>
 Scene pyramid(World<T>& world, int base = 20) {
-    add_ground(world, T(std::max(50, base)));
     Scene s;
+    s.ground = add_ground(world, T(std::max(50, base)));
     for (int row = 0; row < base; ++row) {
         const int n = base - row;
         for (int j = 0; j < n; ++j) {
@@ -43,8 +43,8 @@ Scene pyramid(World<T>& world, int base = 20) {
 /// A light unit box (density 100 kg/m³) under a box 400 times heavier (same size).
 template <class T>
 Scene heavy_on_light(World<T>& world) {
-    add_ground(world);
     Scene s;
+    s.ground = add_ground(world);
     s.bodies.push_back(add_box(world, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5), T(0)}, Quat<T>::identity(), T(100)));
     s.bodies.push_back(add_box(world, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(1.5), T(0)}, Quat<T>::identity(), T(40000)));
     s.eye = {4, 3, 6};

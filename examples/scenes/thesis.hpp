@@ -30,7 +30,8 @@ Quat<T> edge_down(const Vec3<T>& along) {
 /// A cube falling onto a static pedestal so that they first touch as `kind` says.
 template <class T>
 Scene contact_kind(World<T>& world, ContactKind kind) {
-    add_ground(world);
+    Scene s;
+    s.ground = add_ground(world);
     const T corner = std::sqrt(T(0.75)), edge = std::sqrt(T(0.5));
     // The pedestal stands on its lowest feature, static: a face up (top at y = 1), an edge up or
     // a corner up (top at twice its centre height).
@@ -59,7 +60,6 @@ Scene contact_kind(World<T>& world, ContactKind kind) {
     }
     // A small offset so the cube does not balance forever on a tip, and a tilt for the face case.
     const Vec3<T> offset = kind == ContactKind::face_face ? Vec3<T>{T(0.45), T(0), T(0.1)} : Vec3<T>{T(0.03), T(0), T(0.02)};
-    Scene s;
     s.bodies.push_back(add_box(world, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), top + reach + T(0.3), T(0)} + offset, q));
     s.eye = {3.5, 2.6, 4.5};
     s.target = {0, 1.2, 0};
@@ -69,8 +69,8 @@ Scene contact_kind(World<T>& world, ContactKind kind) {
 /// Scenario 7: a block on a plank on a rectangular prism on the ground.
 template <class T>
 Scene seesaw(World<T>& world) {
-    add_ground(world);
     Scene s;
+    s.ground = add_ground(world);
     s.bodies.push_back(add_box(world, Vec3<T>{T(0.4), T(0.4), T(0.6)}, Vec3<T>{T(0), T(0.4), T(0)}));        // prism
     s.bodies.push_back(add_box(world, Vec3<T>{T(2), T(0.05), T(0.5)}, Vec3<T>{T(0.3), T(0.85), T(0)}, Quat<T>::identity(), T(500)));  // plank
     s.bodies.push_back(add_box(world, Vec3<T>{T(0.25), T(0.25), T(0.25)}, Vec3<T>{T(1.6), T(1.15), T(0)}));  // block
@@ -82,8 +82,8 @@ Scene seesaw(World<T>& world) {
 /// Scenario 8: `count` dominoes in a row along +x, the first pushed over.
 template <class T>
 Scene dominoes(World<T>& world, int count = 24) {
-    add_ground(world);
     Scene s;
+    s.ground = add_ground(world);
     const Vec3<T> half{T(0.05), T(0.5), T(0.25)};
     for (int i = 0; i < count; ++i) {
         BodyDef<T> def;

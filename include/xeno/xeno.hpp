@@ -42,4 +42,5 @@
 #include "dynamics/settings.hpp"
 #include "dynamics/solver_body.hpp"
 #include "dynamics/world.hpp"
+#include "dynamics/world_draw.hpp"
 #include "shape/convex_hull.hpp"

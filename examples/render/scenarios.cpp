@@ -1,0 +1,74 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// xeno_render's scenario registry: every scene of examples/scenes/all.hpp as a Simulation in float
+// or double. The world advances with World::update (fixed 1/60 s steps from an accumulator) and is
+// drawn through DrawAdapter, so the frames show exactly what the tests simulate.
+#include "render/scenario.hpp"
+
+#include "scenes/all.hpp"
+
+#include <xeno/dynamics/world_draw.hpp>
+
+namespace xeno::render {
+
+namespace {
+
+template <class T>
+class WorldSimulation final : public Simulation {
+public:
+    explicit WorldSimulation(const std::string& name) : scene_(scenes::build(name, world_)) {}
+
+    void step(double seconds) override { world_.update(static_cast<T>(seconds)); }
+
+    void draw(Renderer& out, bool contacts) const override {
+        DrawAdapter<T> adapter(out);
+        DrawOptions<T> options;
+        options.contacts = contacts;
+        const BodyId ground = scene_.ground;
+        options.hide = [ground](BodyId id) { return id == ground; };  // the renderer draws its own floor
+        draw_world(world_, adapter, options);
+    }
+
+    std::vector<BodyState> states() const override {
+        std::vector<BodyState> out;
+        int index = 0;
+        world_.for_each_body([&](BodyId id, const Body<T>& b) {
+            if (id == scene_.ground) return;
+            const Vec3<T>& p = b.position();
+            const Quat<T>& q = b.orientation();
+            out.push_back({index++, double(p.x), double(p.y), double(p.z), double(q.w), double(q.x), double(q.y), double(q.z)});
+        });
+        return out;
+    }
+
+    Camera camera() const override {
+        Camera c;
+        c.position = scene_.eye;
+        c.target = scene_.target;
+        return c;
+    }
+
+private:
+    World<T> world_;
+    scenes::Scene scene_;
+};
+
+}  // namespace
+
+const std::vector<Scenario>& scenarios() {
+    static const std::vector<Scenario> list = [] {
+        std::vector<Scenario> out;
+        for (const auto& [name, description] : scenes::scene_list()) {
+            const std::string n = name;
+            out.push_back({n, description, [n](bool use_float) -> std::unique_ptr<Simulation> {
+                               if (use_float) return std::make_unique<WorldSimulation<float>>(n);
+                               return std::make_unique<WorldSimulation<double>>(n);
+                           }});
+        }
+        return out;
+    }();
+    return list;
+}
+
+}  // namespace xeno::render
