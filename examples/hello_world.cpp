@@ -1,11 +1,27 @@
 #include <xeno/xeno.hpp>
 
 #include <cstdio>
+#include <vector>
 
 int main() {
     namespace xs = xeno::f64;  // or xeno::f32: the same names in single precision
-    const xs::Quat turn = xs::Quat::from_axis_angle(xs::Vec3{0, 1, 0}, 3.14159265358979 / 2);
-    const xs::Transform pose{{1, 2, 3}, turn};
-    const xs::Vec3 p = pose.apply(xs::Vec3{0, 0, 1});
-    std::printf("(0, 0, 1) in the world: (%.3f, %.3f, %.3f)\n", p.x, p.y, p.z);
+    xs::World world;           // gravity (0, -9.81, 0), fixed steps of 1/60 s
+
+    xs::BodyDef ground;
+    ground.type = xeno::BodyType::static_body;
+    ground.position = {0, -0.5, 0};  // a 20 m floor whose top is y = 0
+    world.create_body(xs::Box(10, 0.5, 10), ground);
+
+    std::vector<xeno::BodyId> boxes;
+    for (int i = 0; i < 5; ++i) {
+        xs::BodyDef box;  // dynamic, 1000 kg/m³
+        box.position = {0.2 * i, 1.0 + 1.5 * i, 0};
+        box.orientation = xs::Quat::from_axis_angle({1, 1, 0}, 0.3 * i);
+        boxes.push_back(world.create_body(xs::Box(0.5, 0.5, 0.5), box));
+    }
+    for (int step = 0; step < 180; ++step) world.step(1.0 / 60);  // three seconds
+    for (xeno::BodyId id : boxes) {
+        const xs::Vec3 p = world.body(id).position();
+        std::printf("box %u rests at (%.3f, %.3f, %.3f)\n", id.index, p.x, p.y, p.z);
+    }
 }

@@ -84,8 +84,15 @@ public:
     const Mat3<T>& local_inertia() const { return inertia_local_; }
     /// I⁻¹ in world axes: R I_local⁻¹ Rᵀ.
     Mat3<T> inverse_inertia_world() const {
+        if (inverse_mass_ == T(0)) return Mat3<T>::zero();
         const Mat3<T> r = to_matrix(orientation_);
-        return r * inverse_inertia_local_ * transpose(r);
+        return r * inverse_inertia_local() * transpose(r);
+    }
+    /// I⁻¹ in the body frame (zero for static/kinematic), computed from the inertia: one 3×3
+    /// inverse per call, cheaper than storing it in every body (docs/benchmarks.md, memory).
+    Mat3<T> inverse_inertia_local() const {
+        if (inverse_mass_ == T(0)) return Mat3<T>::zero();
+        return try_inverse(inertia_local_).value_or(Mat3<T>::zero());
     }
     const Material<T>& material() const { return material_; }
     T linear_damping() const { return linear_damping_; }
@@ -155,8 +162,7 @@ private:
     Vec3<T> angular_velocity_{};
     Vec3<T> force_{};
     Vec3<T> torque_{};
-    Mat3<T> inertia_local_{};          ///< kg·m², body frame
-    Mat3<T> inverse_inertia_local_{};  ///< 1/(kg·m²), body frame; zero for static/kinematic
+    Mat3<T> inertia_local_{};          ///< kg·m², body frame; zero for static/kinematic
     T inverse_mass_{};                 ///< 1/kg; zero for static/kinematic
     Material<T> material_{};
     T linear_damping_{}, angular_damping_{}, gravity_scale_{1};
@@ -284,7 +290,6 @@ void Body<T>::set_mass_properties(const MassProperties<T>& m) {
         detail::report_invalid(where, "inertia must be finite and positive definite; Ixx", static_cast<double>(m.inertia[0].x));
     inverse_mass_ = T(1) / m.mass;
     inertia_local_ = m.inertia;
-    inverse_inertia_local_ = *inv;
     const T mean = trace(m.inertia) / T(3);
     isotropic_ = length(m.inertia[0] - Vec3<T>::unit_x() * mean) + length(m.inertia[1] - Vec3<T>::unit_y() * mean) +
                      length(m.inertia[2] - Vec3<T>::unit_z() * mean) <= T(1e-6) * mean;

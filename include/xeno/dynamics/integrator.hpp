@@ -19,7 +19,7 @@ template <class T>
 struct BodyIntegration {
     Vec3<T> acceleration{};      ///< m/s²: gravity × scale + force / mass
     Vec3<T> angular_impulse_rate{};  ///< rad/s²: I_world⁻¹ torque
-    Mat3<T> inertia_local{};     ///< kg·m², body frame (gyroscopic term)
+    const Mat3<T>* inertia_local = nullptr;  ///< kg·m², body frame (gyroscopic term; the body's own)
     Quat<T> orientation0{};      ///< orientation at the start of the step
     T linear_damping{}, angular_damping{};
     bool gyroscopic = false;     ///< false for isotropic inertia, where ω × Iω = 0
@@ -38,13 +38,14 @@ void integrate_velocity(SolverBody<T>& body, const BodyIntegration<T>& in, T h) 
         // J = I + h/2 (skew(ω_m) I − skew(I ω_m)).
         const Quat<T> q = body.dq * in.orientation0;
         const Vec3<T> w0 = inverse_rotate(q, body.w);
-        const Vec3<T> l0 = in.inertia_local * w0;
+        const Mat3<T>& inertia = *in.inertia_local;
+        const Vec3<T> l0 = inertia * w0;
         Vec3<T> w1 = w0;
         for (int newton = 0; newton < 2; ++newton) {
             const Vec3<T> wm = (w0 + w1) * T(0.5);
-            const Vec3<T> lm = in.inertia_local * wm;
-            const Vec3<T> f = in.inertia_local * w1 - l0 + cross(wm, lm) * h;
-            const Mat3<T> j = in.inertia_local + (skew(wm) * in.inertia_local - skew(lm)) * (T(0.5) * h);
+            const Vec3<T> lm = inertia * wm;
+            const Vec3<T> f = inertia * w1 - l0 + cross(wm, lm) * h;
+            const Mat3<T> j = inertia + (skew(wm) * inertia - skew(lm)) * (T(0.5) * h);
             const std::optional<Mat3<T>> j_inv = try_inverse(j);
             if (!j_inv) break;
             w1 -= *j_inv * f;

@@ -97,6 +97,8 @@ public:
     void set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& orientation);
 
     std::size_t body_count() const { return bodies_.size() - free_slots_.size(); }
+    /// Reserves room for this many bodies and contacts, so growing to them allocates once.
+    void reserve(std::size_t bodies, std::size_t contacts = 0);
     /// Calls f(BodyId, const Body<T>&) for every living body, in slot order.
     template <class F>
     void for_each_body(F&& f) const {
@@ -151,7 +153,6 @@ private:
     std::vector<ProxyPair> pairs_;
     std::vector<Contact<T>> contacts_;            ///< sorted by (a.index, b.index)
     std::vector<SolverBody<T>> solver_bodies_;    ///< slot 0: static stand-in
-    std::vector<BodyIntegration<T>> integration_;  ///< parallel to solver_bodies_
     std::vector<std::uint32_t> solver_index_;     ///< per slot: index into solver_bodies_ (0: none)
     std::vector<std::uint32_t> solver_slot_;      ///< per solver body: its slot
     std::vector<ContactConstraint<T>> constraints_;
@@ -227,6 +228,15 @@ BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDe
     bounds_[slot] = world_bounds(*b.shape_, b.transform());
     previous_pose_[slot] = b.transform();
     return {slot, b.generation_};
+}
+
+template <class T>
+void World<T>::reserve(std::size_t bodies, std::size_t contacts) {
+    bodies_.reserve(bodies);
+    bounds_.reserve(bodies);
+    previous_pose_.reserve(bodies);
+    solver_index_.reserve(bodies);
+    contacts_.reserve(contacts);
 }
 
 template <class T>
@@ -392,7 +402,6 @@ void World<T>::prepare(T dt) {
     const T h = dt / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
     // Solver bodies: every awake dynamic or kinematic body; slot 0 stands for static ones.
     solver_bodies_.assign(1, SolverBody<T>{});
-    integration_.assign(1, BodyIntegration<T>{});
     solver_slot_.assign(1, 0);
     std::fill(solver_index_.begin(), solver_index_.end(), 0u);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
@@ -404,18 +413,7 @@ void World<T>::prepare(T dt) {
         s.w = b.angular_velocity_;
         s.inv_mass = b.inverse_mass_;
         s.inv_inertia = b.type_ == BodyType::dynamic ? b.inverse_inertia_world() : Mat3<T>::zero();
-        BodyIntegration<T> in;
-        if (b.type_ == BodyType::dynamic) {
-            in.acceleration = settings_.gravity * b.gravity_scale_ + b.force_ * b.inverse_mass_;
-            in.angular_impulse_rate = s.inv_inertia * b.torque_;
-            in.inertia_local = b.inertia_local_;
-            in.gyroscopic = !b.isotropic_;
-            in.linear_damping = b.linear_damping_;
-            in.angular_damping = b.angular_damping_;
-        }
-        in.orientation0 = b.orientation_;
         solver_bodies_.push_back(s);
-        integration_.push_back(in);
         solver_slot_.push_back(i);
     }
     stats_.awake_bodies = solver_bodies_.size() - 1;
@@ -506,7 +504,19 @@ void World<T>::solve(T dt) {
     SolvePass<T> pass{T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
     const T max_rotation = settings_.max_rotation_per_step / static_cast<T>(substeps);
     for (int sub = 0; sub < substeps; ++sub) {
-        for (std::size_t i = 1; i < solver_bodies_.size(); ++i) integrate_velocity(solver_bodies_[i], integration_[i], h);
+        for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
+            const Body<T>& b = bodies_[solver_slot_[i]];
+            if (b.type_ != BodyType::dynamic) continue;  // kinematic: velocity is the user's
+            BodyIntegration<T> in;
+            in.acceleration = settings_.gravity * b.gravity_scale_ + b.force_ * b.inverse_mass_;
+            in.angular_impulse_rate = solver_bodies_[i].inv_inertia * b.torque_;
+            in.inertia_local = &b.inertia_local_;
+            in.orientation0 = b.orientation_;
+            in.gyroscopic = !b.isotropic_;
+            in.linear_damping = b.linear_damping_;
+            in.angular_damping = b.angular_damping_;
+            integrate_velocity(solver_bodies_[i], in, h);
+        }
         if (settings_.warm_starting) warm_start(constraints_, solver_bodies_);
         pass.use_bias = true;
         for (int it = 0; it < settings_.velocity_iterations; ++it) solve_contacts(constraints_, solver_bodies_, pass);

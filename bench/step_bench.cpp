@@ -1,0 +1,204 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// xeno_step_bench: milliseconds per World::step for the dynamics issue's scenes, float and
+// double, one thread, with the contacts solved per step; whether the 5,050-box pyramid stands
+// after 10 s (no box's centre more than a quarter box from where it was placed) and its top's sag;
+// and memory per body and per touching pair measured by a counting allocator (every heap byte
+// the world allocates, container slack included), beside the thesis's Quadro 25.
+//
+//   xeno_step_bench [--quick] [--out DIR]    (--quick: fewer steps and no 5,050-box pyramid)
+#include "scenes/random.hpp"
+#include "scenes/stacks.hpp"
+
+#include <xeno/dynamics/world.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <new>
+#include <string>
+
+// The counting allocator: every operator new/delete of this program goes through it.
+namespace {
+std::atomic<long long> g_heap_bytes{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+    void* p = std::malloc(size + 16);
+    if (!p) throw std::bad_alloc();
+    *static_cast<std::size_t*>(p) = size;
+    g_heap_bytes += static_cast<long long>(size);
+    return static_cast<char*>(p) + 16;
+}
+void operator delete(void* p) noexcept {
+    if (!p) return;
+    char* base = static_cast<char*>(p) - 16;
+    g_heap_bytes -= static_cast<long long>(*reinterpret_cast<std::size_t*>(base));
+    std::free(base);
+}
+void operator delete(void* p, std::size_t) noexcept { operator delete(p); }
+
+using namespace xeno;
+
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+
+template <class T>
+const char* precision() {
+    return std::is_same_v<T, float> ? "float" : "double";
+}
+
+struct Timing {
+    double ms_per_step;
+    double contacts_per_step;
+    double points_per_step;
+};
+
+template <class T>
+Timing time_steps(World<T>& world, int steps) {
+    double contacts = 0, points = 0;
+    const auto start = clock_type::now();
+    for (int i = 0; i < steps; ++i) {
+        world.step(T(1) / T(60));
+        contacts += double(world.last_step_stats().contacts);
+        points += double(world.last_step_stats().contact_points);
+    }
+    const double ms = std::chrono::duration<double, std::milli>(clock_type::now() - start).count();
+    return {ms / steps, contacts / steps, points / steps};
+}
+
+template <class T>
+WorldSettings<T> no_sleep() {
+    WorldSettings<T> s;
+    s.allow_sleeping = false;
+    return s;
+}
+
+/// N unit boxes in a loose grid 1.5 m apart, 2 … m above the ground, falling.
+template <class T>
+void drop_boxes(World<T>& world, int n) {
+    scenes::add_ground(world, T(100));
+    scenes::Random rng(3);
+    const int side = static_cast<int>(std::ceil(std::sqrt(double(n) / 4)));
+    const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
+    for (int i = 0; i < n; ++i) {
+        const int layer = i / (side * side), k = i % (side * side);
+        BodyDef<T> def;
+        def.position = {T(1.5) * T(k % side - side / 2), T(2) + T(1.5) * T(layer), T(1.5) * T(k / side - side / 2)};
+        def.orientation = rng.rotation<T>();
+        world.create_body(box, def);
+    }
+}
+
+template <class T>
+void pyramid_row(int base, int steps) {
+    World<T> world(no_sleep<T>());
+    const scenes::Scene scene = scenes::pyramid(world, base);
+    std::vector<Vec3<T>> placed;
+    for (BodyId id : scene.bodies) placed.push_back(world.body(id).position());
+    const Timing t = time_steps(world, steps);
+    double worst = 0;
+    for (std::size_t i = 0; i < placed.size(); ++i) worst = std::max(worst, double(length(world.body(scene.bodies[i]).position() - placed[i])));
+    const double sag = double(placed.back().y - world.body(scene.bodies.back()).position().y);
+    std::printf("pyramid-%-4d %6zu boxes %-6s %8.2f ms/step %7.0f contacts %7.0f points | after %4.1f s: worst move %.3f m, top sag %.4f m%s\n",
+                base, scene.bodies.size(), precision<T>(), t.ms_per_step, t.contacts_per_step, t.points_per_step, steps / 60.0, worst, sag,
+                base == 100 ? (worst < 0.25 ? "  (stands: < 0.25)" : "  (FAILS: >= 0.25)") : "");
+}
+
+template <class T>
+void drop_row(int n, int steps) {
+    World<T> world(no_sleep<T>());
+    drop_boxes(world, n);
+    const Timing t = time_steps(world, steps);
+    std::printf("drop-%-7d %6d boxes %-6s %8.2f ms/step %7.0f contacts %7.0f points | over %.1f s of falling and settling\n", n, n,
+                precision<T>(), t.ms_per_step, t.contacts_per_step, t.points_per_step, steps / 60.0);
+}
+
+template <class T>
+void memory_row(int n) {
+    // Bodies: n boxes sharing one shape, apart in the air (no contacts). Persistent = the world's
+    // state between steps; during a step the solver's per-body scratch comes on top.
+    const long long before = g_heap_bytes;
+    long long persistent = 0, stepping = 0, with_pairs = 0;
+    std::size_t touching = 0;
+    const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
+    const long long shape_bytes = g_heap_bytes - before;
+    {
+        WorldSettings<T> s = no_sleep<T>();
+        s.gravity = Vec3<T>::zero();
+        World<T> world(s);
+        world.reserve(std::size_t(n));
+        const int side = static_cast<int>(std::ceil(std::cbrt(double(n))));
+        for (int i = 0; i < n; ++i) {
+            BodyDef<T> def;
+            def.position = {T(3) * T(i % side), T(3) * T((i / side) % side), T(3) * T(i / (side * side))};
+            world.create_body(box, def);
+        }
+        persistent = g_heap_bytes - before - shape_bytes;
+        world.step(T(1) / T(60));
+        stepping = g_heap_bytes - before - shape_bytes;
+    }
+    {
+        // Touching pairs: a row of n boxes each pressed 1 mm into the next, no gravity.
+        WorldSettings<T> s = no_sleep<T>();
+        s.gravity = Vec3<T>::zero();
+        World<T> world(s);
+        world.reserve(std::size_t(n), std::size_t(n));
+        for (int i = 0; i < n; ++i) {
+            BodyDef<T> def;
+            def.position = {T(0.999) * T(i), T(0), T(0)};
+            world.create_body(box, def);
+        }
+        world.step(T(1) / T(60));
+        with_pairs = g_heap_bytes - before - shape_bytes;
+        for (const Contact<T>& c : world.contacts()) touching += c.touching ? 1 : 0;
+    }
+    const double pair_persistent = double(sizeof(Contact<T>) + sizeof(ProxyPair));
+    const double pair_stepping = touching > 0 ? double(with_pairs - stepping) / double(touching) : 0.0;
+    std::printf("%8d bodies %-6s %9.1f KB | %5.0f bytes/body between steps, %5.0f during a step | %7zu pairs: %4.0f bytes/pair kept, %5.0f during a step\n",
+                n, precision<T>(), double(stepping) / 1024, double(persistent) / n, double(stepping) / n, touching, pair_persistent, pair_stepping);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    bool quick = false;
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+        else if (std::strcmp(argv[i], "--help") == 0) {
+            std::printf("usage: xeno_step_bench [--quick]\n");
+            return 0;
+        } else {
+            std::fprintf(stderr, "xeno_step_bench: unknown option '%s' (try --help)\n", argv[i]);
+            return 2;
+        }
+    }
+    const int steps = quick ? 60 : 600;  // 10 s at 60 Hz
+    std::printf("World::step, one thread, 60 Hz, %d steps each, default settings (soft step, 12 substeps), no sleeping\n", steps);
+    for (int base : {20, 40}) {
+        pyramid_row<float>(base, steps);
+        pyramid_row<double>(base, steps);
+    }
+    if (!quick) {
+        pyramid_row<float>(100, steps);
+        pyramid_row<double>(100, steps);
+    }
+    for (int n : {1000, 4000}) {
+        drop_row<float>(n, quick ? 60 : 300);
+        drop_row<double>(n, quick ? 60 : 300);
+    }
+    std::printf("\nMemory (counting allocator, world.reserve() called; bodies share one shape). 'Between steps' is the\n"
+                "world's state; 'during a step' adds the solver's scratch (per awake body and per manifold).\n");
+    std::printf("thesis (Quadro 25): 1,274 bytes/body, 380 bytes/touching pair\n");
+    for (int n : {10, 100, 1000, 10000, 100000}) {
+        if (quick && n > 10000) break;
+        memory_row<float>(n);
+        memory_row<double>(n);
+    }
+    return 0;
+}
