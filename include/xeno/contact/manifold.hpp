@@ -32,7 +32,8 @@ struct ContactPoint {
     Vec3<T> local_b{};          ///< m, B's body frame: the contact on B
     T depth{};                  ///< m along the normal, > 0 overlapping, < 0 speculative gap
     T normal_impulse{};         ///< N·s per solver substep, accumulated (warm start)
-    T max_normal_impulse{};     ///< N·s, the largest of the last step (events, restitution gate)
+    T max_normal_impulse{};     ///< N·s, the largest of the last step (restitution gate)
+    T step_impulse{};           ///< N·s, total normal impulse applied over the last step (events)
 };
 
 /// The persistent contact of one body pair.

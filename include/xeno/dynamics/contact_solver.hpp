@@ -37,6 +37,7 @@ struct ContactConstraintPoint {
     T normal_mass{};               ///< kg: 1 / (n row's effective inverse mass)
     T normal_impulse{};            ///< N·s per substep, accumulated
     T max_normal_impulse{};        ///< N·s, the largest this step
+    T step_impulse{};              ///< N·s, summed over the substeps (events)
     T relative_velocity{};         ///< m/s along n before the step (restitution)
 };
 
@@ -163,6 +164,16 @@ void solve_contacts(std::vector<ContactConstraint<T>>& constraints, std::vector<
     bodies[0] = SolverBody<T>{};
 }
 
+/// Adds each row's substep impulse to its step total (after every substep).
+template <class T>
+void accumulate_step_impulses(std::vector<ContactConstraint<T>>& constraints) {
+    for (ContactConstraint<T>& c : constraints)
+        for (int i = 0; i < c.count; ++i) {
+            ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
+            p.step_impulse += p.normal_impulse;
+        }
+}
+
 /// The restitution pass after the substeps (see the file comment). A few sweeps: one
 /// Gauss–Seidel sweep over a face's four points leaves the face short of the target speed
 /// (measured: a flat box bounced to 96 % of e v), and only bouncing rows take part.
@@ -181,6 +192,7 @@ void apply_restitution(std::vector<ContactConstraint<T>>& constraints, std::vect
             const T delta = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
             const T updated = std::max(p.normal_impulse + delta, T(0));
             const Vec3<T> impulse = c.normal * (updated - p.normal_impulse);
+            p.step_impulse += updated - p.normal_impulse;
             p.normal_impulse = updated;
             p.max_normal_impulse = std::max(p.max_normal_impulse, updated);
             a.apply(p.r_a, -impulse);

@@ -15,7 +15,7 @@
 //                        → relax (SOLVER-NOTES.md 2.6; one substep and N iterations in baumgarte mode)
 //    7. restitution      one pass after the substeps
 //    8. finish           impulses stored in the manifolds, poses and velocities written back
-//    9. sleep            islands of slow bodies fall asleep; events are collected
+//    9. sleep, events    islands of slow bodies fall asleep; contact events are reported
 // update(seconds) runs whole steps from an accumulator (thesis Quadro 22) and leaves the remainder
 // as an interpolation factor for rendering.
 #pragma once
@@ -29,6 +29,7 @@
 #include "integrator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <memory>
 #include <numeric>
@@ -43,8 +44,26 @@ struct Contact {
     BodyId a, b;
     Manifold<T> manifold;
     T friction{}, restitution{};  ///< combined from the two materials
-    bool touching = false;        ///< some point overlaps (not only speculative)
+    bool touching = false;        ///< some point overlaps, or pushed during the last step
+    bool was_touching = false;    ///< touching at the end of the previous step (events)
     bool sensor = false;          ///< one body is a sensor: reported, never solved
+};
+
+enum class ContactEventKind { began, persisted, ended };
+
+/// A change in contact reported after a step: two bodies began to touch (or a sensor began to
+/// overlap), still touch, or stopped touching. Delivered after the step, when the world is
+/// consistent; the handles may be stale by the time a listener sees them if an earlier listener
+/// call destroyed the body (check World::contains).
+template <class T>
+struct ContactEvent {
+    ContactEventKind kind = ContactEventKind::began;
+    BodyId a, b;
+    bool sensor = false;                 ///< one of the bodies is a sensor (overlap, no response)
+    Vec3<T> normal{};                    ///< unit, world, from A to B
+    int count = 0;                       ///< contact points (0 for ended events)
+    std::array<Vec3<T>, 4> points{};     ///< m, world: the middle of each contact point pair
+    T impulse{};                         ///< N·s: total normal impulse over the step (0 for sensors)
 };
 
 /// Counters of the last step, for benchmarks and tests.
@@ -108,6 +127,16 @@ public:
     /// Every contact (including speculative ones) after the last step, sorted by body pair.
     const std::vector<Contact<T>>& contacts() const { return contacts_; }
     const StepStats& last_step_stats() const { return stats_; }
+    /// Contact events of the last step (began, persisted, ended), sorted by body pair.
+    const std::vector<ContactEvent<T>>& contact_events() const { return events_; }
+    /// Called after every step once per event of contact_events(); the world may be changed
+    /// from inside it (bodies created or destroyed): the events are delivered from a copy.
+    void set_contact_listener(std::function<void(World&, const ContactEvent<T>&)> listener) {
+        listener_ = std::move(listener);
+    }
+    /// A user veto on pairs: called for every pair whose boxes overlap (and that layers and
+    /// masks allow); returning false means the two never touch. Pass {} to remove it.
+    void set_contact_filter(std::function<bool(BodyId, BodyId)> filter) { filter_ = std::move(filter); }
 
     /// Advances exactly one step of dt seconds (dt finite and > 0, else InvalidArgument).
     void step(T dt);
@@ -142,7 +171,11 @@ private:
     void solve(T dt);
     void finish();
     void update_sleep(T dt);
+    void report_events();
     void wake_contacts_of(std::uint32_t slot);
+    void end_contact(const Contact<T>& c) {
+        if (c.touching) events_pending_.push_back({ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0)});
+    }
 
     WorldSettings<T> settings_;
     std::vector<Body<T>> bodies_;
@@ -157,6 +190,9 @@ private:
     std::vector<std::uint32_t> solver_slot_;      ///< per solver body: its slot
     std::vector<ContactConstraint<T>> constraints_;
     StepStats stats_;
+    std::vector<ContactEvent<T>> events_, events_pending_;
+    std::function<void(World&, const ContactEvent<T>&)> listener_;
+    std::function<bool(BodyId, BodyId)> filter_;
     T accumulator_{};
 };
 
@@ -244,7 +280,11 @@ void World<T>::destroy_body(BodyId id) {
     const std::uint32_t slot = checked(id, "World::destroy_body");
     wake_contacts_of(slot);
     contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
-                                   [&](const Contact<T>& c) { return c.a.index == slot || c.b.index == slot; }),
+                                   [&](const Contact<T>& c) {
+                                       const bool gone = c.a.index == slot || c.b.index == slot;
+                                       if (gone) end_contact(c);  // reported after the next step
+                                       return gone;
+                                   }),
                     contacts_.end());
     Body<T>& b = bodies_[slot];
     b.alive_ = false;
@@ -318,6 +358,40 @@ void World<T>::step(T dt) {
     solve(dt);
     finish();
     update_sleep(dt);
+    report_events();
+}
+
+template <class T>
+void World<T>::report_events() {
+    events_.swap(events_pending_);  // ended events recorded since the last report come first
+    events_pending_.clear();
+    for (const Contact<T>& c : contacts_) {
+        if (!c.touching && !c.was_touching) continue;
+        ContactEvent<T> e;
+        e.kind = !c.touching ? ContactEventKind::ended : (c.was_touching ? ContactEventKind::persisted : ContactEventKind::began);
+        e.a = c.a;
+        e.b = c.b;
+        e.sensor = c.sensor;
+        e.normal = c.manifold.normal;
+        if (c.touching) {
+            const Body<T>& a = bodies_[c.a.index];
+            const Body<T>& b = bodies_[c.b.index];
+            e.count = c.manifold.count;
+            for (int i = 0; i < c.manifold.count; ++i) {
+                const ContactPoint<T>& p = c.manifold.points[static_cast<std::size_t>(i)];
+                e.points[static_cast<std::size_t>(i)] = (a.world_point(p.local_a) + b.world_point(p.local_b)) * T(0.5);
+                e.impulse += p.step_impulse;
+            }
+        }
+        events_.push_back(e);
+    }
+    std::sort(events_.begin(), events_.end(), [](const ContactEvent<T>& x, const ContactEvent<T>& y) {
+        return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
+    });
+    if (listener_) {
+        const std::vector<ContactEvent<T>> delivered = events_;  // the listener may change the world
+        for (const ContactEvent<T>& e : delivered) listener_(*this, e);
+    }
 }
 
 template <class T>
@@ -339,25 +413,45 @@ void World<T>::narrow_phase(T dt) {
     std::vector<Contact<T>> next;
     next.reserve(pairs_.size());
     std::size_t old = 0;
-    for (const ProxyPair& pair : pairs_) {
-        // Merge-join with last step's contacts (both sorted by pair).
+    // Last step's contacts that this step does not carry on have ended.
+    auto skip_old_before = [&](const ProxyPair& pair) {
         while (old < contacts_.size() &&
                (contacts_[old].a.index < pair.a || (contacts_[old].a.index == pair.a && contacts_[old].b.index < pair.b)))
-            ++old;
+            end_contact(contacts_[old++]);
+    };
+    for (const ProxyPair& pair : pairs_) {
+        // Merge-join with last step's contacts (both sorted by pair).
+        skip_old_before(pair);
         const bool had = old < contacts_.size() && contacts_[old].a.index == pair.a && contacts_[old].b.index == pair.b;
         Body<T>& a = bodies_[pair.a];
         Body<T>& b = bodies_[pair.b];
-        if (a.type_ != BodyType::dynamic && b.type_ != BodyType::dynamic) continue;
-        if (!(a.layer_ & b.mask_) || !(b.layer_ & a.mask_)) continue;
+        const auto drop = [&] {
+            if (had) end_contact(contacts_[old++]);
+        };
+        if (a.type_ != BodyType::dynamic && b.type_ != BodyType::dynamic) {
+            drop();
+            continue;
+        }
+        if (!(a.layer_ & b.mask_) || !(b.layer_ & a.mask_) || (filter_ && !filter_(id_of(pair.a), id_of(pair.b)))) {
+            drop();
+            continue;
+        }
         if (!active(a) && !active(b)) {  // both asleep (or asleep on static): keep the contact as it was
-            if (had) next.push_back(contacts_[old]);
+            if (had) {
+                next.push_back(contacts_[old++]);
+                next.back().was_touching = next.back().touching;
+            }
             continue;
         }
         const T margin = settings_.speculative_distance + (length(a.linear_velocity_) + length(b.linear_velocity_)) * dt;
         const ContactManifold<T> fresh = generate_contacts(*a.shape_, a.transform(), *b.shape_, b.transform(), margin);
-        if (fresh.count == 0) continue;  // apart: the contact (if any) ends
+        if (fresh.count == 0) {  // apart: the contact (if any) ends
+            drop();
+            continue;
+        }
         Contact<T> c;
-        if (had) c = contacts_[old];
+        if (had) c = contacts_[old++];
+        c.was_touching = had && c.touching;
         c.a = id_of(pair.a);
         c.b = id_of(pair.b);
         c.friction = combined_friction(a.material_, b.material_);
@@ -368,8 +462,10 @@ void World<T>::narrow_phase(T dt) {
         else
             c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
         c.touching = c.manifold.touching();
+        for (int i = 0; i < c.manifold.count; ++i) c.manifold.points[static_cast<std::size_t>(i)].step_impulse = T(0);
         next.push_back(c);
     }
+    while (old < contacts_.size()) end_contact(contacts_[old++]);
     contacts_.swap(next);
     stats_.contacts = contacts_.size();
 }
@@ -527,6 +623,7 @@ void World<T>::solve(T dt) {
         }
         pass.use_bias = false;
         for (int it = 0; it < settings_.relax_iterations; ++it) solve_contacts(constraints_, solver_bodies_, pass);
+        accumulate_step_impulses(constraints_);
     }
     apply_restitution(constraints_, solver_bodies_, settings_.restitution_threshold);
 }
@@ -538,9 +635,14 @@ void World<T>::finish() {
         for (int i = 0; i < c.count; ++i) {
             m.points[static_cast<std::size_t>(i)].normal_impulse = c.points[static_cast<std::size_t>(i)].normal_impulse;
             m.points[static_cast<std::size_t>(i)].max_normal_impulse = c.points[static_cast<std::size_t>(i)].max_normal_impulse;
+            m.points[static_cast<std::size_t>(i)].step_impulse = c.points[static_cast<std::size_t>(i)].step_impulse;
         }
         m.friction_impulse = c.t1 * c.friction_1 + c.t2 * c.friction_2;
         m.twist_impulse = c.twist_impulse;
+        // A speculative contact that pushed this step touched: the impact happens in the step
+        // that stops the bodies, before they overlap.
+        for (int i = 0; i < c.count; ++i)
+            if (c.points[static_cast<std::size_t>(i)].step_impulse > T(0)) contacts_[c.manifold].touching = true;
     }
     for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
         Body<T>& b = bodies_[solver_slot_[i]];

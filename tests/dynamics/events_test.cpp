@@ -1,0 +1,124 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Filtering (layers, masks, a veto callback), sensors and contact events.
+#include "support/approx.hpp"
+#include "support/sim.hpp"
+
+using namespace xeno;
+
+namespace {
+template <class T>
+BodyId drop_box(World<T>& w, T height, std::uint32_t layer = 1, std::uint32_t mask = ~0u) {
+    BodyDef<T> d;
+    d.position = {T(0), height, T(0)};
+    d.layer = layer;
+    d.mask = mask;
+    return w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("contact events begin once, persist while touching and end when apart", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    const BodyId ground = scenes::add_ground(w);
+    const BodyId box = drop_box(w, T(1.5));
+    int began = 0, persisted = 0, ended = 0, began_step = -1;
+    T landing_impulse = T(0);  // over the step that began and the next: the stop spans both
+    test::simulate(w, T(1), [&](int step) {
+        for (const ContactEvent<T>& e : w.contact_events()) {
+            CHECK(e.a == ground);
+            CHECK(e.b == box);
+            if (e.kind == ContactEventKind::began) {
+                ++began;
+                began_step = step;
+                landing_impulse += e.impulse;
+                CHECK(e.count == 4);
+                CHECK(test::near(e.normal, Vec3<T>::unit_y(), T(1e-4)));
+            }
+            if (e.kind == ContactEventKind::persisted) {
+                ++persisted;
+                if (step == began_step + 1) landing_impulse += e.impulse;
+            }
+            if (e.kind == ContactEventKind::ended) ++ended;
+        }
+    });
+    CHECK(began == 1);
+    CHECK(ended == 0);
+    CHECK(persisted > 30);
+    // It fell 1 m: it lands after about sqrt(2/9.81) s = 27 steps; stopping it takes m v =
+    // 1000 · 4.43 N·s, plus two steps of weight, m g dt each.
+    CHECK(std::abs(began_step - 27) <= 2);
+    const T expected = T(1000) * std::sqrt(T(2) * T(9.81)) + T(2) * T(1000) * T(9.81) / T(60);
+    CHECK(std::abs(landing_impulse - expected) < T(0.1) * expected);
+    // Resting: each step's impulse carries the weight, m g dt.
+    const T rest = w.contact_events().front().impulse;
+    CHECK(test::near(rest, T(1000) * T(9.81) / T(60), T(0.02)));
+    // Lifted away: one ended event.
+    w.body(box).set_linear_velocity({T(0), T(5), T(0)});
+    test::simulate(w, T(0.2), [&](int) {
+        for (const ContactEvent<T>& e : w.contact_events()) ended += e.kind == ContactEventKind::ended;
+    });
+    CHECK(ended == 1);
+}
+
+TEST_CASE_TEMPLATE("a listener may destroy bodies while events are delivered", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    scenes::add_ground(w);
+    std::vector<BodyId> boxes;
+    for (int i = 0; i < 5; ++i) {
+        BodyDef<T> d;
+        d.position = {T(2) * T(i), T(0.6) + T(0.2) * T(i), T(0)};
+        boxes.push_back(w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d));
+    }
+    int destroyed = 0;
+    w.set_contact_listener([&](World<T>& world, const ContactEvent<T>& e) {
+        if (e.kind == ContactEventKind::began && world.contains(e.b)) {
+            world.destroy_body(e.b);  // every box that lands disappears
+            ++destroyed;
+        }
+    });
+    test::simulate(w, T(2));
+    CHECK(destroyed == 5);
+    CHECK(w.body_count() == 1);
+    CHECK(w.contacts().empty());
+}
+
+TEST_CASE_TEMPLATE("layers, masks and a filter callback keep pairs apart", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    scenes::add_ground(w);
+    // Layer 2 does not collide with layer 4: the upper box falls through the lower one.
+    const BodyId lower = drop_box(w, T(0.5), 2u, ~4u);
+    const BodyId upper = drop_box(w, T(2), 4u, ~2u);
+    test::simulate(w, T(1.5));
+    CHECK(test::near(w.body(lower).position().y, T(0.5), T(1e-3)));
+    CHECK(test::near(w.body(upper).position().y, T(0.5), T(1e-3)));  // both on the ground, overlapping
+    // A filter vetoing the pair with the ground lets a third box fall through the floor.
+    const BodyId ghost = drop_box(w, T(4));
+    w.set_contact_filter([&](BodyId a, BodyId b) { return a != ghost && b != ghost; });
+    test::simulate(w, T(1.5));
+    CHECK(w.body(ghost).position().y < T(-2));
+    w.set_contact_filter({});
+}
+
+TEST_CASE_TEMPLATE("a sensor reports overlaps and never pushes", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    scenes::add_ground(w);
+    BodyDef<T> s;
+    s.type = BodyType::static_body;
+    s.sensor = true;
+    s.position = {T(0), T(3), T(0)};
+    const BodyId sensor = w.create_body(Box<T>(T(1), T(0.5), T(1)), s);
+    const BodyId box = drop_box(w, T(5));
+    int began = 0, ended = 0;
+    test::simulate(w, T(1.5), [&](int) {
+        for (const ContactEvent<T>& e : w.contact_events()) {
+            if (!(e.a == sensor || e.b == sensor)) continue;
+            CHECK(e.sensor);
+            began += e.kind == ContactEventKind::began;
+            ended += e.kind == ContactEventKind::ended;
+        }
+    });
+    CHECK(began == 1);
+    CHECK(ended == 1);                                                  // it fell through the sensor
+    CHECK(test::near(w.body(box).position().y, T(0.5), T(1e-3)));       // and landed on the ground
+}
