@@ -32,6 +32,7 @@
 #include "collide/face_clip.hpp"
 #include "collide/minkowski.hpp"
 #include "collide/mpr.hpp"
+#include "collide/raycast.hpp"
 #include "collide/sat.hpp"
 #include "contact/manifold.hpp"
 #include "debug_draw.hpp"

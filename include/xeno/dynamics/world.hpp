@@ -23,6 +23,7 @@
 #include "../broadphase/brute_force.hpp"
 #include "../broadphase/sweep_and_prune.hpp"
 #include "../collide/collide.hpp"
+#include "../collide/raycast.hpp"
 #include "../contact/manifold.hpp"
 #include "body.hpp"
 #include "contact_solver.hpp"
@@ -64,6 +65,13 @@ struct ContactEvent {
     int count = 0;                       ///< contact points (0 for ended events)
     std::array<Vec3<T>, 4> points{};     ///< m, world: the middle of each contact point pair
     T impulse{};                         ///< N·s: total normal impulse over the step (0 for sensors)
+};
+
+/// A ray hit on a body of the world.
+template <class T>
+struct WorldRayHit {
+    BodyId body;
+    RayHit<T> hit;
 };
 
 /// Counters of the last step, for benchmarks and tests.
@@ -134,6 +142,17 @@ public:
     void set_contact_listener(std::function<void(World&, const ContactEvent<T>&)> listener) {
         listener_ = std::move(listener);
     }
+    /// The nearest body the ray hits within its length, if any (every shape type, solid: a ray
+    /// starting inside a body hits it at distance 0). Bodies whose broad-phase box the ray
+    /// misses are skipped before the exact test. The direction must be unit (InvalidArgument).
+    std::optional<WorldRayHit<T>> raycast(const Ray<T>& ray) const;
+    /// Every body the ray hits, nearest first.
+    std::vector<WorldRayHit<T>> raycast_all(const Ray<T>& ray) const;
+    /// The bodies whose shape contains the point.
+    std::vector<BodyId> query_point(const Vec3<T>& point) const;
+    /// The bodies whose (tight) bounding box overlaps the box.
+    std::vector<BodyId> query_aabb(const Aabb<T>& box) const;
+
     /// A user veto on pairs: called for every pair whose boxes overlap (and that layers and
     /// masks allow); returning false means the two never touch. Pass {} to remove it.
     void set_contact_filter(std::function<bool(BodyId, BodyId)> filter) { filter_ = std::move(filter); }
@@ -307,7 +326,54 @@ void World<T>::set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& 
     b.moved_ = true;
     b.wake();
     previous_pose_[slot] = b.transform();
+    bounds_[slot] = world_bounds(*b.shape_, b.transform()).expanded(settings_.speculative_distance);
     wake_contacts_of(slot);
+}
+
+template <class T>
+std::vector<WorldRayHit<T>> World<T>::raycast_all(const Ray<T>& ray) const {
+    const char* where = "World::raycast";
+    if (!is_finite(ray.origin)) detail::report_invalid(where, "ray origin must be finite, x + y + z", static_cast<double>(ray.origin.x + ray.origin.y + ray.origin.z));
+    if (!is_finite(ray.direction) || std::abs(length(ray.direction) - T(1)) > T(1e-3))
+        detail::report_invalid(where, "ray direction must be a unit vector; its length", static_cast<double>(length(ray.direction)));
+    if (!(ray.max_distance > T(0))) detail::report_invalid(where, "ray max_distance must be > 0", static_cast<double>(ray.max_distance));
+    std::vector<WorldRayHit<T>> hits;
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+        const Body<T>& b = bodies_[i];
+        if (!b.alive_ || !xeno::raycast(bounds_[i], ray)) continue;
+        if (const std::optional<RayHit<T>> hit = xeno::raycast(*b.shape_, b.transform(), ray)) hits.push_back({id_of(i), *hit});
+    }
+    std::sort(hits.begin(), hits.end(), [](const WorldRayHit<T>& x, const WorldRayHit<T>& y) {
+        return x.hit.distance != y.hit.distance ? x.hit.distance < y.hit.distance : x.body.index < y.body.index;
+    });
+    return hits;
+}
+
+template <class T>
+std::optional<WorldRayHit<T>> World<T>::raycast(const Ray<T>& ray) const {
+    std::vector<WorldRayHit<T>> hits = raycast_all(ray);
+    if (hits.empty()) return std::nullopt;
+    return hits.front();
+}
+
+template <class T>
+std::vector<BodyId> World<T>::query_point(const Vec3<T>& point) const {
+    if (!is_finite(point)) detail::report_invalid("World::query_point", "point must be finite, x + y + z", static_cast<double>(point.x + point.y + point.z));
+    std::vector<BodyId> out;
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i)
+        if (bodies_[i].alive_ && bounds_[i].contains(point) && contains_point(*bodies_[i].shape_, bodies_[i].transform(), point))
+            out.push_back(id_of(i));
+    return out;
+}
+
+template <class T>
+std::vector<BodyId> World<T>::query_aabb(const Aabb<T>& box) const {
+    if (!is_finite(box.min) || !is_finite(box.max)) detail::report_invalid("World::query_aabb", "box must be finite, min.x", static_cast<double>(box.min.x));
+    std::vector<BodyId> out;
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i)
+        if (bodies_[i].alive_ && overlaps(bounds_[i], box) && overlaps(world_bounds(*bodies_[i].shape_, bodies_[i].transform()), box))
+            out.push_back(id_of(i));
+    return out;
 }
 
 template <class T>

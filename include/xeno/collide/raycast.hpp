@@ -1,0 +1,254 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Ray casts and point tests against every shape, in closed form in the shape's local frame: a
+// quadratic for the round surfaces (sphere, capsule side and ends, cylinder side, cone side), a
+// plane for flat ones (cylinder caps, cone base) and slab clipping for boxes and polyhedra
+// (Cyrus–Beck: the ray enters at the last entering face plane and leaves at the first leaving
+// one). Shapes are solid: a ray that starts inside one hits it at distance 0, with the normal
+// facing back along the ray.
+#pragma once
+
+#include "../shape/shape.hpp"
+
+#include <optional>
+
+namespace xeno {
+
+/// A ray from origin along the unit direction, at most max_distance long (metres).
+template <class T>
+struct Ray {
+    Vec3<T> origin{};
+    Vec3<T> direction{T(0), T(-1), T(0)};  ///< unit
+    T max_distance = ScalarTraits<T>::max;  ///< m
+};
+
+/// Where a ray meets a shape.
+template <class T>
+struct RayHit {
+    T distance{};     ///< m along the ray, 0 … max_distance
+    T fraction{};     ///< distance / max_distance (0 when max_distance is unbounded)
+    Vec3<T> point{};  ///< world
+    Vec3<T> normal{};  ///< unit, world, the surface normal at the hit (facing the ray's origin)
+};
+
+namespace detail {
+
+/// Local-frame hit: distance and outward normal.
+template <class T>
+struct LocalHit {
+    T t;
+    Vec3<T> n;
+};
+
+/// Keeps the nearer of two candidate hits.
+template <class T>
+void keep_nearer(std::optional<LocalHit<T>>& best, T t, const Vec3<T>& n) {
+    if (!best || t < best->t) best = LocalHit<T>{t, n};
+}
+
+/// Entry and exit of a ray (o + t d) into a convex set bounded by planes n·x <= offset.
+template <class T, class Planes>
+std::optional<LocalHit<T>> clip_by_planes(const Vec3<T>& o, const Vec3<T>& d, T max_t, const Planes& planes) {
+    T enter = T(0), exit = max_t;
+    Vec3<T> normal = -d;  // starting inside
+    for (const auto& [n, offset] : planes) {
+        const T dist = offset - dot(n, o);  // >= 0 on the inner side
+        const T speed = dot(n, d);
+        if (speed == T(0)) {
+            if (dist < T(0)) return std::nullopt;  // parallel and outside
+            continue;
+        }
+        const T t = dist / speed;
+        if (speed < T(0)) {  // entering through this plane
+            if (t > enter) {
+                enter = t;
+                normal = n;
+            }
+        } else if (t < exit) {
+            exit = t;
+        }
+        if (enter > exit) return std::nullopt;
+    }
+    return LocalHit<T>{enter, normal};
+}
+
+/// The entering root t in [0, max_t] of a t² + 2 b t + c = 0 (a > 0): the smaller one. A ray
+/// that starts inside the quadric (smaller root < 0) does not enter it.
+template <class T>
+std::optional<T> first_root(T a, T b, T c, T max_t) {
+    const T disc = b * b - a * c;
+    if (disc < T(0) || a <= T(0)) return std::nullopt;
+    const T t0 = (-b - std::sqrt(disc)) / a;
+    if (t0 >= T(0) && t0 <= max_t) return t0;
+    return std::nullopt;
+}
+
+template <class T>
+std::optional<LocalHit<T>> ray_sphere(const Vec3<T>& o, const Vec3<T>& d, T max_t, const Vec3<T>& centre, T r) {
+    const Vec3<T> m = o - centre;
+    const T c = dot(m, m) - r * r;
+    if (c <= T(0)) return LocalHit<T>{T(0), -d};
+    if (const std::optional<T> t = first_root(T(1), dot(m, d), c, max_t)) return LocalHit<T>{*t, normalized_or(m + d * *t, -d)};
+    return std::nullopt;
+}
+
+/// The side of an infinite y-axis cylinder of radius r, restricted to |y - y0| <= h.
+template <class T>
+std::optional<LocalHit<T>> ray_cylinder_side(const Vec3<T>& o, const Vec3<T>& d, T max_t, T r, T y_low, T y_high) {
+    const T a = d.x * d.x + d.z * d.z;
+    if (a <= ScalarTraits<T>::epsilon) return std::nullopt;  // parallel to the axis
+    if (const std::optional<T> t = first_root(a, o.x * d.x + o.z * d.z, o.x * o.x + o.z * o.z - r * r, max_t)) {
+        const Vec3<T> p = o + d * *t;
+        if (p.y >= y_low && p.y <= y_high) return LocalHit<T>{*t, normalized_or(Vec3<T>{p.x, T(0), p.z}, -d)};
+    }
+    return std::nullopt;
+}
+
+/// A disc of radius r in the plane y = y0 facing `side` (+1 up, -1 down).
+template <class T>
+std::optional<LocalHit<T>> ray_disc(const Vec3<T>& o, const Vec3<T>& d, T max_t, T r, T y0, T side) {
+    if (d.y * side >= T(0)) return std::nullopt;  // moving away from the face
+    const T t = (y0 - o.y) / d.y;
+    if (t < T(0) || t > max_t) return std::nullopt;
+    const Vec3<T> p = o + d * t;
+    if (p.x * p.x + p.z * p.z > r * r) return std::nullopt;
+    return LocalHit<T>{t, {T(0), side, T(0)}};
+}
+
+template <class T>
+bool contains_local(const Shape<T>& shape, const Vec3<T>& p) {
+    return std::visit(
+        [&](const auto& s) -> bool {
+            using S = std::decay_t<decltype(s)>;
+            if constexpr (std::is_same_v<S, Sphere<T>>) {
+                return length_squared(p) <= s.radius() * s.radius();
+            } else if constexpr (std::is_same_v<S, Box<T>>) {
+                const Vec3<T> a = abs(p);
+                const Vec3<T>& h = s.half_extents();
+                return a.x <= h.x && a.y <= h.y && a.z <= h.z;
+            } else if constexpr (std::is_same_v<S, Capsule<T>>) {
+                const Vec3<T> axis{T(0), clamp(p.y, -s.half_height(), s.half_height()), T(0)};
+                return length_squared(p - axis) <= s.radius() * s.radius();
+            } else if constexpr (std::is_same_v<S, Cylinder<T>>) {
+                return std::abs(p.y) <= s.half_height() && p.x * p.x + p.z * p.z <= s.radius() * s.radius();
+            } else if constexpr (std::is_same_v<S, Cone<T>>) {
+                const T top = s.apex().y, bottom = s.base_y();
+                if (p.y < bottom || p.y > top) return false;
+                const T rr = s.radius() * (top - p.y) / s.height();
+                return p.x * p.x + p.z * p.z <= rr * rr;
+            } else {
+                for (const auto& f : s.faces())
+                    if (dot(f.normal, p) > f.offset) return false;
+                return true;
+            }
+        },
+        shape);
+}
+
+template <class T>
+std::optional<LocalHit<T>> raycast_local(const Shape<T>& shape, const Vec3<T>& o, const Vec3<T>& d, T max_t) {
+    if (contains_local(shape, o)) return LocalHit<T>{T(0), -d};
+    return std::visit(
+        [&](const auto& s) -> std::optional<LocalHit<T>> {
+            using S = std::decay_t<decltype(s)>;
+            std::optional<LocalHit<T>> best;
+            if constexpr (std::is_same_v<S, Sphere<T>>) {
+                best = ray_sphere(o, d, max_t, Vec3<T>::zero(), s.radius());
+            } else if constexpr (std::is_same_v<S, Box<T>>) {
+                const Vec3<T>& h = s.half_extents();
+                const std::pair<Vec3<T>, T> planes[6] = {{Vec3<T>::unit_x(), h.x}, {-Vec3<T>::unit_x(), h.x}, {Vec3<T>::unit_y(), h.y},
+                                                         {-Vec3<T>::unit_y(), h.y}, {Vec3<T>::unit_z(), h.z}, {-Vec3<T>::unit_z(), h.z}};
+                best = clip_by_planes(o, d, max_t, planes);
+            } else if constexpr (std::is_same_v<S, Capsule<T>>) {
+                const T h = s.half_height(), r = s.radius();
+                if (auto side = ray_cylinder_side(o, d, max_t, r, -h, h)) keep_nearer(best, side->t, side->n);
+                for (const T y : {h, -h})
+                    if (auto cap = ray_sphere(o, d, max_t, Vec3<T>{T(0), y, T(0)}, r)) {
+                        const Vec3<T> p = o + d * cap->t;
+                        if (y > T(0) ? p.y >= h : p.y <= -h) keep_nearer(best, cap->t, cap->n);
+                    }
+            } else if constexpr (std::is_same_v<S, Cylinder<T>>) {
+                const T h = s.half_height(), r = s.radius();
+                if (auto side = ray_cylinder_side(o, d, max_t, r, -h, h)) keep_nearer(best, side->t, side->n);
+                if (auto top = ray_disc(o, d, max_t, r, h, T(1))) keep_nearer(best, top->t, top->n);
+                if (auto bottom = ray_disc(o, d, max_t, r, -h, T(-1))) keep_nearer(best, bottom->t, bottom->n);
+            } else if constexpr (std::is_same_v<S, Cone<T>>) {
+                // Side: x² + z² = k² (apex_y - y)², k = r / H, for base_y <= y <= apex_y.
+                const T apex = s.apex().y, k = s.radius() / s.height();
+                const Vec3<T> q{o.x, o.y - apex, o.z};  // apex at the origin
+                const T k2 = k * k;
+                const T a = d.x * d.x + d.z * d.z - k2 * d.y * d.y;
+                const T b = q.x * d.x + q.z * d.z - k2 * q.y * d.y;
+                const T c = q.x * q.x + q.z * q.z - k2 * q.y * q.y;
+                const T disc = b * b - a * c;
+                if (disc >= T(0) && std::abs(a) > ScalarTraits<T>::epsilon) {
+                    const T root = std::sqrt(disc);
+                    for (const T t : {(-b - root) / a, (-b + root) / a}) {
+                        if (t < T(0) || t > max_t) continue;
+                        const Vec3<T> p = o + d * t;
+                        if (p.y < s.base_y() || p.y > apex) continue;  // the other nappe or past the base
+                        const T rho = std::sqrt(p.x * p.x + p.z * p.z);
+                        const Vec3<T> radial = rho > T(0) ? Vec3<T>{p.x / rho, T(0), p.z / rho} : Vec3<T>::zero();
+                        keep_nearer(best, t, normalized_or(radial * s.height() + Vec3<T>::unit_y() * s.radius(), -d));
+                    }
+                }
+                if (auto base = ray_disc(o, d, max_t, s.radius(), s.base_y(), T(-1))) keep_nearer(best, base->t, base->n);
+            } else {
+                std::vector<std::pair<Vec3<T>, T>> planes;
+                planes.reserve(s.faces().size());
+                for (const auto& f : s.faces()) planes.emplace_back(f.normal, f.offset);
+                best = clip_by_planes(o, d, max_t, planes);
+            }
+            return best;
+        },
+        shape);
+}
+
+}  // namespace detail
+
+/// The first point where the ray meets the shape placed by pose, if it does within max_distance.
+/// A ray starting inside the shape hits at distance 0. The direction must be unit.
+template <class T>
+std::optional<RayHit<T>> raycast(const Shape<T>& shape, const Transform<T>& pose, const Ray<T>& ray) {
+    const Vec3<T> o = pose.inverse_apply(ray.origin);
+    const Vec3<T> d = pose.inverse_apply_direction(ray.direction);
+    const std::optional<detail::LocalHit<T>> hit = detail::raycast_local(shape, o, d, ray.max_distance);
+    if (!hit) return std::nullopt;
+    RayHit<T> out;
+    out.distance = hit->t;
+    out.fraction = ray.max_distance < ScalarTraits<T>::max ? hit->t / ray.max_distance : T(0);
+    out.point = ray.origin + ray.direction * hit->t;
+    out.normal = pose.apply_direction(hit->n);
+    return out;
+}
+
+/// True when the world point lies inside (or on) the shape placed by pose.
+template <class T>
+bool contains_point(const Shape<T>& shape, const Transform<T>& pose, const Vec3<T>& point) {
+    return detail::contains_local(shape, pose.inverse_apply(point));
+}
+
+/// Entry distance of a ray into a box (slab test), if it enters within max_distance.
+template <class T>
+std::optional<T> raycast(const Aabb<T>& box, const Ray<T>& ray) {
+    T enter = T(0), exit = ray.max_distance;
+    for (int i = 0; i < 3; ++i) {
+        const T o = ray.origin[i], d = ray.direction[i];
+        if (d == T(0)) {
+            if (o < box.min[i] || o > box.max[i]) return std::nullopt;
+            continue;
+        }
+        T t0 = (box.min[i] - o) / d, t1 = (box.max[i] - o) / d;
+        if (t0 > t1) std::swap(t0, t1);
+        enter = std::max(enter, t0);
+        exit = std::min(exit, t1);
+        if (enter > exit) return std::nullopt;
+    }
+    return enter;
+}
+
+namespace f32 { using Ray = xeno::Ray<float>; using RayHit = xeno::RayHit<float>; }
+namespace f64 { using Ray = xeno::Ray<double>; using RayHit = xeno::RayHit<double>; }
+
+}  // namespace xeno
