@@ -17,7 +17,7 @@ namespace {
 template <class T>
 class WorldSimulation final : public Simulation {
 public:
-    explicit WorldSimulation(const std::string& name) : scene_(scenes::build(name, world_)) {}
+    explicit WorldSimulation(const std::string& name) : scene_(scenes::build(name, world_)), rays_(name == "ray-fan") {}
 
     void step(double seconds) override { world_.update(static_cast<T>(seconds)); }
 
@@ -28,6 +28,17 @@ public:
         const BodyId ground = scene_.ground;
         options.hide = [ground](BodyId id) { return id == ground; };  // the renderer draws its own floor
         draw_world(world_, adapter, options);
+        if (rays_) {  // the ray-fan scene: each ray to its first hit, and the hit's normal
+            for (const Ray<T>& ray : scenes::ray_fan_rays<T>()) {
+                const std::optional<WorldRayHit<T>> hit = world_.raycast(ray);
+                const Vec3<T> end = hit ? hit->hit.point : ray.origin + ray.direction * ray.max_distance;
+                adapter.draw_line(ray.origin, end, hit ? Color{1.0f, 0.85f, 0.1f, 1} : Color{0.6f, 0.6f, 0.7f, 1});
+                if (hit) {
+                    adapter.draw_point(end, T(0.08), Color{0.95f, 0.2f, 0.1f, 1});
+                    adapter.draw_line(end, end + hit->hit.normal * T(0.4), Color{0.2f, 0.9f, 0.3f, 1});
+                }
+            }
+        }
     }
 
     std::vector<BodyState> states() const override {
@@ -52,6 +63,7 @@ public:
 private:
     World<T> world_;
     scenes::Scene scene_;
+    bool rays_;
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 // build by name. Names are those of the renderer issue (thesis scenarios 1–8, then ours).
 #pragma once
 
+#include "features.hpp"
 #include "piles.hpp"
 #include "stacks.hpp"
 #include "thesis.hpp"
@@ -32,6 +33,13 @@ inline const std::vector<std::pair<std::string, std::string>>& scene_list() {
         {"mixed-pile", "hulls, spheres, capsules, cylinders, cones and boxes dropped into a pen"},
         {"incline", "boxes with friction 0.2 ... 0.8 on a ramp of slope 0.5: the slippery ones slide"},
         {"heavy-on-light", "a box 400 times heavier resting on a light one"},
+        {"sleeping-pile", "64 boxes settle and fall asleep (sleeping bodies drawn faded)"},
+        {"ray-fan", "a fan of 24 rays cast every frame against a few bodies (hits drawn)"},
+        {"bullet", "a 10 cm box fired at 300 m/s at a 10 cm wall: continuous detection stops it"},
+        {"pendulum", "a 2 m pendulum on a ball joint, released from 30 degrees"},
+        {"chain", "20 capsule links on ball joints, released horizontally"},
+        {"hinged-door", "a door on a hinge swung open against its 90-degree stop"},
+        {"ragdoll", "capsules joined by ball joints and limited hinges, dropped on a step"},
     };
     return list;
 }
@@ -53,6 +61,13 @@ Scene build(const std::string& name, World<T>& world) {
     if (name == "mixed-pile") return mixed_pile(world);
     if (name == "incline") return incline(world);
     if (name == "heavy-on-light") return heavy_on_light(world);
+    if (name == "sleeping-pile") return sleeping_pile(world);
+    if (name == "ray-fan") return ray_fan(world);
+    if (name == "bullet") return bullet(world);
+    if (name == "pendulum") return pendulum(world);
+    if (name == "chain") return chain(world);
+    if (name == "hinged-door") return hinged_door(world);
+    if (name == "ragdoll") return ragdoll(world);
     xeno::detail::report_invalid(("xeno::scenes::build: unknown scene '" + name + "'").c_str(), "name length", static_cast<double>(name.size()));
 }
 

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "config.hpp"
+#include "math/scalar.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -100,6 +101,18 @@ template <class T>
 void require_non_negative(T value, const char* where, const char* what) {
     if (!(std::isfinite(value) && value >= T(0)))
         report_invalid(where, (std::string(what) + " must be finite and >= 0").c_str(),
+                       static_cast<double>(value));
+}
+
+/// Rejects a shape size (metres) that is not finite and > 0, or outside
+/// [ScalarTraits<T>::min_size, max_size].
+template <class T>
+void require_size(T value, const char* where, const char* what) {
+    require_positive(value, where, what);
+    if (value < ScalarTraits<T>::min_size || value > ScalarTraits<T>::max_size)
+        report_invalid(where, (std::string(what) + " must be within [" + format_value(ScalarTraits<T>::min_size) + ", " +
+                               format_value(ScalarTraits<T>::max_size) + "] m in this precision")
+                                  .c_str(),
                        static_cast<double>(value));
 }
 

@@ -39,6 +39,7 @@
 #include "dynamics/body.hpp"
 #include "dynamics/contact_solver.hpp"
 #include "dynamics/integrator.hpp"
+#include "dynamics/joint.hpp"
 #include "dynamics/material.hpp"
 #include "dynamics/settings.hpp"
 #include "dynamics/solver_body.hpp"

@@ -7,47 +7,121 @@
 //      update; a change of axis re-sorts from scratch);
 //   2. keep the proxies sorted by their box's minimum on that axis: from one step to the next
 //      bodies move little, so an insertion sort of the previous order is close to linear
-//      (frame-to-frame coherence);
-//   3. sweep: each proxy is compared only with the following proxies whose minimum is not past
-//      its maximum, and those pairs are checked on the other two axes.
-// Empty boxes (free slots) sort last and never pair.
+//      (frame-to-frame coherence); past a budget of moves (a cold start) a full sort;
+//   3. cut the other two axes into a grid of columns a few box sizes wide and copy each box, in
+//      sorted order, into every column it touches (a counting sort, so every column stays sorted);
+//   4. sweep each column: each box is compared only with the following boxes whose minimum is not
+//      past its maximum, and those pairs are checked on the other two axes. A pair whose boxes
+//      share several columns is reported only in the column where both boxes are present first
+//      (the largest first cell of the two, on each cross axis), so exactly once.
+// Why columns: a single sweep of a scene spread in 3D compares each box with every box of the
+// slab its extent cuts across the whole scene, n · n w/L candidates for boxes of size w in a cube
+// of side L, 1.6·10⁸ at 100,000 unit boxes against 1.7·10⁵ true pairs. Columns of side c cut that
+// by (L/c)² for a few duplicates (a box spans (1 + w/c)² columns on average); with c ≥ 4 w that
+// is 1.6·10⁶. Scenes of fewer than 256 boxes, or without spread, use one column: the plain sweep
+// (Bullet's btMultiSapBroadPhase and Tracy et al., "Efficient Large-Scale Sweep and Prune Methods
+// with AABB Insertion and Removal", IEEE VR 2009, split the sweep the same way).
+// Empty boxes (free slots) never pair. Boxes must not contain NaN.
 #pragma once
 
 #include "../math/aabb.hpp"
 #include "pair.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
 namespace xeno {
+
+namespace detail {
+
+/// Sorts pairs (a < b < proxies) as detail::sort_pairs does, in O(proxies + pairs) when there are
+/// many: a counting sort on a, then each run of equal a sorted on b (runs are short: a body has a
+/// handful of partners; a long run, say a huge box's, gets std::sort).
+inline void sort_pairs_by_first(std::vector<ProxyPair>& pairs, std::size_t proxies, std::vector<std::uint32_t>& counts,
+                                std::vector<ProxyPair>& scratch) {
+    if (pairs.size() < 64 || pairs.size() < proxies / 8) {
+        sort_pairs(pairs);
+        return;
+    }
+    counts.assign(proxies + 1, 0);
+    for (const ProxyPair& p : pairs) ++counts[p.a + 1];
+    for (std::size_t k = 0; k < proxies; ++k) counts[k + 1] += counts[k];
+    scratch.resize(pairs.size());
+    for (const ProxyPair& p : pairs) scratch[counts[p.a]++] = p;  // afterwards counts[a] = end of run a
+    std::size_t begin = 0;
+    for (std::size_t a = 0; a < proxies && begin < scratch.size(); ++a) {
+        const std::size_t end = counts[a];
+        if (end - begin > 16) {
+            std::sort(scratch.begin() + static_cast<std::ptrdiff_t>(begin), scratch.begin() + static_cast<std::ptrdiff_t>(end));
+        } else {
+            for (std::size_t i = begin + 1; i < end; ++i) {
+                const ProxyPair p = scratch[i];
+                std::size_t j = i;
+                for (; j > begin && p.b < scratch[j - 1].b; --j) scratch[j] = scratch[j - 1];
+                scratch[j] = p;
+            }
+        }
+        begin = end;
+    }
+    pairs.swap(scratch);
+}
+
+}  // namespace detail
 
 /// Incremental sweep-and-prune over a vector of boxes indexed by proxy id.
 template <class T>
 class SweepAndPrune {
 public:
-    /// Recomputes the overlapping pairs of `boxes` (a < b, sorted), reusing the previous order.
+    /// Recomputes the overlapping pairs of `boxes` (a < b, sorted, each once; touching counts),
+    /// reusing the previous order.
     void find_pairs(const std::vector<Aabb<T>>& boxes, std::vector<ProxyPair>& pairs);
     /// The axis (0, 1, 2) used by the last sweep.
     int axis() const { return axis_; }
+    /// The number of columns of the last sweep (1: a single sweep over all boxes).
+    std::size_t columns() const { return cells_u_ * cells_v_; }
 
 private:
-    struct Entry {
-        T min;               ///< the box's minimum on the sweep axis
+    /// A proxy's box as the sweep reads it. An empty box is stored with every minimum +inf and
+    /// every maximum -inf: it sorts last and overlaps nothing.
+    struct Item {
+        T min, max;                      ///< on the sweep axis
+        T min_u, max_u, min_v, max_v;    ///< on the two cross axes
         std::uint32_t proxy;
+        std::uint16_t first_u, first_v;  ///< its first column cell on each cross axis
+        bool empty() const { return max < min; }
     };
-    std::vector<Entry> order_;
+    static constexpr std::size_t kMaxCells = 256;  ///< per cross axis
+
+    std::vector<Item> order_;                     ///< every proxy, sorted by (min, proxy)
+    std::vector<Item> items_;                     ///< the columns' copies, column after column
+    std::vector<std::uint16_t> last_u_, last_v_;  ///< per order_ item: its last column cell
+    std::vector<std::uint32_t> start_;            ///< column k is items_[start_[k], start_[k + 1])
+    std::vector<std::uint32_t> cursor_;           ///< scratch for filling the columns
+    std::vector<T> sizes_;                        ///< scratch: sampled box sizes
+    std::vector<std::uint32_t> counts_;           ///< scratch for sorting the pairs
+    std::vector<ProxyPair> scratch_;
     int axis_ = -1;
+    std::size_t cells_u_ = 1, cells_v_ = 1;
 };
 
 template <class T>
 void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector<ProxyPair>& pairs) {
     pairs.clear();
     const std::size_t n = boxes.size();
-    // 1. The axis of largest spread of the centres (variance over non-empty boxes).
+    constexpr T inf = ScalarTraits<T>::infinity;
+    // 1. Spread of the centres (variance and range over non-empty boxes).
     Vec3<T> sum{}, sum_sq{};
+    Vec3<T> low = Vec3<T>::one() * inf, high = -low;
     std::size_t live = 0;
     for (const Aabb<T>& b : boxes) {
         if (b.empty()) continue;
         const Vec3<T> c = b.center();
         sum += c;
         sum_sq += hadamard(c, c);
+        low = min(low, c);
+        high = max(high, c);
         ++live;
     }
     int axis = 0;
@@ -56,41 +130,126 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
         const Vec3<T> variance = sum_sq * inv - hadamard(sum * inv, sum * inv);
         axis = max_axis(variance);
     }
-    // 2. Refresh the keys in the previous order (new proxies appended), then insertion sort.
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    // The column grid: cells at least four typical box sizes wide (the median cross-axis size of
+    // up to 1024 boxes spread over the vector: a few huge boxes do not inflate it), about 64
+    // boxes per column or more, at most kMaxCells per axis; one cell when nothing is left to cut.
+    // (Four sizes measured best: narrower cells copy more boxes, wider ones compare more.)
+    cells_u_ = cells_v_ = 1;
+    T cell = T(0);
+    if (live >= 256) {
+        sizes_.clear();
+        for (std::size_t i = 0, stride = std::max<std::size_t>(1, n / 1024); i < n; i += stride)
+            if (!boxes[i].empty()) sizes_.push_back(std::max(boxes[i].max[u] - boxes[i].min[u], boxes[i].max[v] - boxes[i].min[v]));
+        const auto middle = sizes_.begin() + static_cast<std::ptrdiff_t>(sizes_.size() / 2);
+        std::nth_element(sizes_.begin(), middle, sizes_.end());
+        const T size = sizes_.empty() ? T(0) : *middle;
+        const T span_u = high[u] - low[u], span_v = high[v] - low[v];
+        const T max_columns = static_cast<T>(live / 64);
+        cell = std::max(T(4) * size, std::sqrt(span_u * span_v / max_columns));
+        auto cells_along = [&](T span) {
+            const T count = span / cell;
+            return count >= T(kMaxCells) ? kMaxCells : count > T(1) ? static_cast<std::size_t>(count) + 1 : std::size_t(1);
+        };
+        if (std::isfinite(cell) && cell > T(0)) {
+            cells_u_ = cells_along(span_u);
+            cells_v_ = cells_along(span_v);
+        }
+    }
+    const std::size_t columns = cells_u_ * cells_v_;
+    const T inv_cell = columns > 1 ? T(1) / cell : T(0);
+    auto cell_of = [inv_cell](T x, T lo, std::size_t cells) {
+        const T f = (x - lo) * inv_cell;  // clamped in floating point first: no overflow, NaN -> 0
+        return static_cast<std::uint16_t>(f >= T(cells - 1) ? T(cells - 1) : f > T(0) ? std::floor(f) : T(0));
+    };
+
+    // 2. Refresh the boxes in the previous order (new proxies appended; the one pass that reads
+    //    `boxes` out of order), then insertion sort.
     if (axis != axis_ || order_.size() > n) {
         order_.clear();
         axis_ = axis;
     }
-    for (std::size_t i = order_.size(); i < n; ++i) order_.push_back({T(0), static_cast<std::uint32_t>(i)});
-    for (Entry& e : order_) e.min = boxes[e.proxy].empty() ? ScalarTraits<T>::infinity : boxes[e.proxy].min[axis];
+    for (std::size_t i = order_.size(); i < n; ++i) order_.push_back({T(0), T(0), T(0), T(0), T(0), T(0), static_cast<std::uint32_t>(i), 0, 0});
+    for (Item& it : order_) {
+        const Aabb<T>& b = boxes[it.proxy];
+        if (b.empty()) {
+            it.min = it.min_u = it.min_v = inf;
+            it.max = it.max_u = it.max_v = -inf;
+        } else {
+            it.min = b.min[axis];
+            it.max = b.max[axis];
+            it.min_u = b.min[u];
+            it.max_u = b.max[u];
+            it.min_v = b.min[v];
+            it.max_v = b.max[v];
+        }
+    }
     // Insertion sort while the order is nearly right; past a budget of moves (a cold start, or a
     // scene that changed a lot) a full sort is cheaper.
-    const auto by_min = [](const Entry& x, const Entry& y) { return x.min < y.min || (x.min == y.min && x.proxy < y.proxy); };
+    const auto by_min = [](const Item& x, const Item& y) { return x.min < y.min || (x.min == y.min && x.proxy < y.proxy); };
     std::size_t moves = 0;
     const std::size_t budget = 8 * order_.size() + 64;
     for (std::size_t i = 1; i < order_.size() && moves <= budget; ++i) {
-        const Entry e = order_[i];
+        if (!by_min(order_[i], order_[i - 1])) continue;
+        const Item e = order_[i];
         std::size_t j = i;
         for (; j > 0 && by_min(e, order_[j - 1]); --j) order_[j] = order_[j - 1];
         order_[j] = e;
         moves += i - j;
     }
     if (moves > budget) std::sort(order_.begin(), order_.end(), by_min);
-    // 3. The sweep.
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    for (std::size_t i = 0; i < order_.size(); ++i) {
-        const Aabb<T>& a = boxes[order_[i].proxy];
-        if (a.empty()) break;  // empty boxes sort last
-        const T max = a.max[axis];
-        for (std::size_t j = i + 1; j < order_.size() && order_[j].min <= max; ++j) {
-            const Aabb<T>& b = boxes[order_[j].proxy];
-            if (a.min[u] <= b.max[u] && b.min[u] <= a.max[u] && a.min[v] <= b.max[v] && b.min[v] <= a.max[v]) {
-                const std::uint32_t p = order_[i].proxy, q = order_[j].proxy;
-                pairs.push_back(p < q ? ProxyPair{p, q} : ProxyPair{q, p});
+
+    // 3. With several columns, copy each box, in sweep order, into every column it touches
+    //    (a counting sort: count, prefix sums, place), so every column stays sorted.
+    const Item* sweep = order_.data();
+    start_.assign(columns + 1, 0);
+    if (columns > 1) {
+        last_u_.resize(order_.size());
+        last_v_.resize(order_.size());
+        for (std::size_t k = 0; k < order_.size(); ++k) {
+            Item& it = order_[k];
+            if (it.empty()) continue;
+            it.first_u = cell_of(it.min_u, low[u], cells_u_);
+            it.first_v = cell_of(it.min_v, low[v], cells_v_);
+            last_u_[k] = cell_of(it.max_u, low[u], cells_u_);
+            last_v_[k] = cell_of(it.max_v, low[v], cells_v_);
+            for (std::size_t cu = it.first_u; cu <= last_u_[k]; ++cu)
+                for (std::size_t cv = it.first_v; cv <= last_v_[k]; ++cv) ++start_[cu * cells_v_ + cv + 1];
+        }
+        for (std::size_t k = 0; k < columns; ++k) start_[k + 1] += start_[k];
+        items_.resize(start_[columns]);
+        cursor_.assign(start_.begin(), start_.end() - 1);
+        for (std::size_t k = 0; k < order_.size(); ++k) {
+            const Item& it = order_[k];
+            if (it.empty()) continue;
+            for (std::size_t cu = it.first_u; cu <= last_u_[k]; ++cu)
+                for (std::size_t cv = it.first_v; cv <= last_v_[k]; ++cv) items_[cursor_[cu * cells_v_ + cv]++] = it;
+        }
+        sweep = items_.data();
+    } else {
+        for (Item& it : order_) it.first_u = it.first_v = 0;
+        start_[1] = static_cast<std::uint32_t>(order_.size());  // empty boxes at the end pair with nothing
+    }
+
+    // 4. The sweep, column by column.
+    for (std::size_t column = 0; column < columns; ++column) {
+        const std::size_t cu = column / cells_v_, cv = column % cells_v_;
+        const Item* first = sweep + start_[column];
+        const Item* last = sweep + start_[column + 1];
+        for (const Item* a = first; a != last; ++a) {
+            const T max_a = a->max;
+            for (const Item* b = a + 1; b != last && b->min <= max_a; ++b) {
+                // & rather than &&: the four outcomes are close to coin flips, and one
+                // well-predicted branch on their conjunction is faster than four mispredicted ones.
+                const bool cross = (a->min_u <= b->max_u) & (b->min_u <= a->max_u) & (a->min_v <= b->max_v) & (b->min_v <= a->max_v);
+                if (!cross) continue;
+                // Shared columns: only the one where both boxes are present first reports.
+                if (std::max(a->first_u, b->first_u) != cu || std::max(a->first_v, b->first_v) != cv) continue;
+                pairs.push_back(a->proxy < b->proxy ? ProxyPair{a->proxy, b->proxy} : ProxyPair{b->proxy, a->proxy});
             }
         }
     }
-    detail::sort_pairs(pairs);
+    detail::sort_pairs_by_first(pairs, n, counts_, scratch_);
 }
 
 }  // namespace xeno

@@ -68,6 +68,10 @@ void require_finite_pose(const Transform<T>& pose, const char* where, const char
     if (!is_finite(pose.orientation) || !(length_squared(pose.orientation) > T(0)))
         report_invalid(where, (std::string(name) + ".orientation must be a finite, non-zero quaternion, w").c_str(),
                        static_cast<double>(pose.orientation.w));
+    // rotate() assumes a unit quaternion: any other scales and shears the shape.
+    if (!(std::abs(length_squared(pose.orientation) - T(1)) <= T(1e-3)))
+        report_invalid(where, (std::string(name) + ".orientation must be a unit quaternion (within 1e-3; normalise it), |q|^2").c_str(),
+                       static_cast<double>(length_squared(pose.orientation)));
 }
 
 enum class PortalStatus { miss, hit_on_ray, found };

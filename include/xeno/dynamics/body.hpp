@@ -285,9 +285,15 @@ void Body<T>::set_mass_properties(const MassProperties<T>& m) {
     detail::require_positive(m.mass, where, "mass");
     if (length(m.center) > T(1e-6) * (T(1) + bounding_radius(*shape_)))
         detail::report_invalid(where, "center must be 0 (the body's position is its centre of mass); |center|", static_cast<double>(length(m.center)));
-    const std::optional<Mat3<T>> inv = try_inverse(m.inertia);
-    if (!is_finite(m.inertia) || !inv || m.inertia[0].x <= T(0) || m.inertia[1].y <= T(0) || m.inertia[2].z <= T(0))
-        detail::report_invalid(where, "inertia must be finite and positive definite; Ixx", static_cast<double>(m.inertia[0].x));
+    // Symmetric (up to round-off, as R I Rᵀ leaves it) and positive definite by Sylvester's criterion:
+    // the leading principal minors are positive.
+    const Mat3<T>& i = m.inertia;
+    const T asymmetry = std::max(std::abs(i[0].y - i[1].x), std::max(std::abs(i[0].z - i[2].x), std::abs(i[1].z - i[2].y)));
+    const bool symmetric = asymmetry <= ScalarTraits<T>::relative_tolerance * std::abs(trace(i));
+    const T minor2 = i[0].x * i[1].y - i[0].y * i[1].x;
+    const std::optional<Mat3<T>> inv = try_inverse(i);
+    if (!is_finite(i) || !inv || !symmetric || !(i[0].x > T(0)) || !(minor2 > T(0)) || !(determinant(i) > T(0)))
+        detail::report_invalid(where, "inertia must be finite, symmetric and positive definite; Ixx", static_cast<double>(i[0].x));
     inverse_mass_ = T(1) / m.mass;
     inertia_local_ = m.inertia;
     const T mean = trace(m.inertia) / T(3);

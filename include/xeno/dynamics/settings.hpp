@@ -36,9 +36,13 @@ struct WorldSettings {
     int substeps = 12;              ///< soft step: solver substeps per step
     int velocity_iterations = 1;    ///< biased iterations per substep (soft step) or per step (baumgarte: 10 recommended)
     int relax_iterations = 1;       ///< unbiased iterations after each substep (baumgarte: per step)
+    int joint_iterations = 4;       ///< sweeps over the joints per contact sweep: joints are few, and one
+                                    ///< sweep lets a door rebound 7 % off its stop (four: under 1 %)
     T contact_hertz = T(90);        ///< soft step: contact stiffness as a frequency, capped at 1/8 of the substep rate
     T contact_damping_ratio = T(10);  ///< soft step: heavily over-damped so overlap leaves without overshoot
     T static_contact_hertz_scale = T(2);  ///< contacts with static or kinematic bodies are this much stiffer
+    T joint_hertz = T(120);         ///< soft step: joint stiffness, capped at 1/4 of the substep rate
+    T joint_damping_ratio = T(2);
     T baumgarte = T(0.2);           ///< baumgarte mode: fraction of the overlap removed per step
     T max_push_out_speed = T(3);    ///< m/s: cap on the speed at which overlap is removed
     T linear_slop = T(0.005);       ///< m: overlap tolerated without correction (baumgarte) and contact tolerance
@@ -68,9 +72,12 @@ void validate(const WorldSettings<T>& s) {
     if (s.substeps < 1) report_invalid(w, "substeps must be >= 1", s.substeps);
     if (s.velocity_iterations < 1) report_invalid(w, "velocity_iterations must be >= 1", s.velocity_iterations);
     if (s.relax_iterations < 0) report_invalid(w, "relax_iterations must be >= 0", s.relax_iterations);
+    if (s.joint_iterations < 1) report_invalid(w, "joint_iterations must be >= 1", s.joint_iterations);
     require_positive(s.contact_hertz, w, "contact_hertz");
     require_non_negative(s.contact_damping_ratio, w, "contact_damping_ratio");
     require_positive(s.static_contact_hertz_scale, w, "static_contact_hertz_scale");
+    require_positive(s.joint_hertz, w, "joint_hertz");
+    require_non_negative(s.joint_damping_ratio, w, "joint_damping_ratio");
     require_non_negative(s.baumgarte, w, "baumgarte");
     require_positive(s.max_push_out_speed, w, "max_push_out_speed");
     require_non_negative(s.linear_slop, w, "linear_slop");

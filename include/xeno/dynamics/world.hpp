@@ -28,6 +28,7 @@
 #include "body.hpp"
 #include "contact_solver.hpp"
 #include "integrator.hpp"
+#include "joint.hpp"
 
 #include <algorithm>
 #include <array>
@@ -132,6 +133,24 @@ public:
         for (std::uint32_t i = 0; i < bodies_.size(); ++i)
             if (bodies_[i].alive_) f(BodyId{i, bodies_[i].generation_}, bodies_[i]);
     }
+    /// Joins two bodies (see JointDef). Checks at the door: living, distinct bodies, not both
+    /// static, finite anchors, a non-zero hinge axis, lower <= upper, max torque >= 0.
+    JointId create_joint(const JointDef<T>& def);
+    /// Removes a joint; its handle becomes stale. Destroying a body removes its joints.
+    void destroy_joint(JointId id);
+    bool contains(JointId id) const {
+        return id.index < joints_.size() && joints_[id.index].alive && joints_[id.index].generation == id.generation;
+    }
+    /// The joint of a handle; a stale or invalid handle is reported (InvalidArgument).
+    const Joint<T>& joint(JointId id) const { return joints_[checked(id, "World::joint")]; }
+    /// The current hinge angle (rad) of a hinge joint.
+    T hinge_angle(JointId id) const {
+        const Joint<T>& j = joint(id);
+        return j.hinge_angle(bodies_[j.a.index].orientation_, bodies_[j.b.index].orientation_);
+    }
+    /// Sets a hinge's motor (enable, target speed rad/s, max torque N·m); wakes the bodies.
+    void set_hinge_motor(JointId id, bool enable, T speed, T max_torque);
+
     /// Every contact (including speculative ones) after the last step, sorted by body pair.
     const std::vector<Contact<T>>& contacts() const { return contacts_; }
     const StepStats& last_step_stats() const { return stats_; }
@@ -176,6 +195,17 @@ private:
             detail::report_invalid(where, "stale body handle: that body was destroyed; index", static_cast<double>(id.index));
         return id.index;
     }
+    std::uint32_t checked(JointId id, const char* where) const {
+        if (!id.valid()) detail::report_invalid(where, "invalid joint handle (default-constructed JointId), index", -1.0);
+        if (!contains(id))
+            detail::report_invalid(where, "stale joint handle: that joint was destroyed; index", static_cast<double>(id.index));
+        return id.index;
+    }
+    static std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+        return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
+    }
+    void rebuild_joint_pairs();
+    void prepare_joints(T h);
     BodyId id_of(std::uint32_t slot) const { return {slot, bodies_[slot].generation_}; }
     /// An awake dynamic body, or a kinematic body with a velocity: something that can push.
     static bool active(const Body<T>& b) {
@@ -208,6 +238,10 @@ private:
     std::vector<std::uint32_t> solver_index_;     ///< per slot: index into solver_bodies_ (0: none)
     std::vector<std::uint32_t> solver_slot_;      ///< per solver body: its slot
     std::vector<ContactConstraint<T>> constraints_;
+    std::vector<Joint<T>> joints_;
+    std::vector<std::uint32_t> free_joints_;
+    std::vector<JointConstraint<T>> joint_rows_;
+    std::vector<std::uint64_t> unconnected_pairs_;  ///< sorted keys of jointed pairs that do not collide
     StepStats stats_;
     std::vector<ContactEvent<T>> events_, events_pending_;
     std::function<void(World&, const ContactEvent<T>&)> listener_;
@@ -286,6 +320,135 @@ BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDe
 }
 
 template <class T>
+JointId World<T>::create_joint(const JointDef<T>& def) {
+    const char* where = "World::create_joint";
+    const std::uint32_t ia = checked(def.a, where), ib = checked(def.b, where);
+    if (ia == ib) detail::report_invalid(where, "a joint needs two different bodies; body index", static_cast<double>(ia));
+    const Body<T>& a = bodies_[ia];
+    const Body<T>& b = bodies_[ib];
+    if (a.type_ == BodyType::static_body && b.type_ == BodyType::static_body)
+        detail::report_invalid(where, "a joint between two static bodies does nothing; body index", static_cast<double>(ib));
+    if (!is_finite(def.anchor_a) || !is_finite(def.anchor_b))
+        detail::report_invalid(where, "anchors must be finite, anchor_a.x", static_cast<double>(def.anchor_a.x));
+    Joint<T> j;
+    j.type = def.type;
+    j.a = def.a;
+    j.b = def.b;
+    j.collide_connected = def.collide_connected;
+    j.local_anchor_a = a.local_point(def.anchor_a);
+    j.local_anchor_b = b.local_point(def.type == JointType::distance ? def.anchor_b : def.anchor_a);
+    if (def.type == JointType::hinge) {
+        const std::optional<Vec3<T>> axis = is_finite(def.axis) ? try_normalized(def.axis) : std::nullopt;
+        if (!axis) detail::report_invalid(where, "hinge axis must be finite and non-zero; its length", static_cast<double>(length(def.axis)));
+        j.local_axis_a = a.local_vector(*axis);
+        j.local_axis_b = b.local_vector(*axis);
+        const Vec3<T> ref = any_perpendicular(*axis);
+        j.local_ref_a = a.local_vector(ref);
+        j.local_ref_b = b.local_vector(ref);
+        if (def.enable_limit) {
+            detail::require_finite(def.lower_angle, where, "lower_angle");
+            detail::require_finite(def.upper_angle, where, "upper_angle");
+            if (def.lower_angle > def.upper_angle)
+                detail::report_invalid(where, "lower_angle must be <= upper_angle; lower - upper", static_cast<double>(def.lower_angle - def.upper_angle));
+        }
+        detail::require_finite(def.motor_speed, where, "motor_speed");
+        detail::require_non_negative(def.max_motor_torque, where, "max_motor_torque");
+        j.enable_limit = def.enable_limit;
+        j.lower_angle = def.lower_angle;
+        j.upper_angle = def.upper_angle;
+        j.enable_motor = def.enable_motor;
+        j.motor_speed = def.motor_speed;
+        j.max_motor_torque = def.max_motor_torque;
+    }
+    j.relative_rotation = conjugate(a.orientation_) * b.orientation_;
+    if (def.type == JointType::distance) {
+        detail::require_finite(def.length, where, "length");
+        j.length = def.length < T(0) ? distance(def.anchor_a, def.anchor_b) : def.length;
+    }
+    std::uint32_t slot;
+    if (!free_joints_.empty()) {
+        slot = free_joints_.back();
+        free_joints_.pop_back();
+        j.generation = joints_[slot].generation;
+        joints_[slot] = j;
+    } else {
+        slot = static_cast<std::uint32_t>(joints_.size());
+        joints_.push_back(j);
+    }
+    joints_[slot].alive = true;
+    bodies_[ia].wake();
+    bodies_[ib].wake();
+    rebuild_joint_pairs();
+    return {slot, joints_[slot].generation};
+}
+
+template <class T>
+void World<T>::destroy_joint(JointId id) {
+    const std::uint32_t slot = checked(id, "World::destroy_joint");
+    Joint<T>& j = joints_[slot];
+    if (contains(j.a)) bodies_[j.a.index].wake();
+    if (contains(j.b)) bodies_[j.b.index].wake();
+    j.alive = false;
+    ++j.generation;
+    free_joints_.push_back(slot);
+    rebuild_joint_pairs();
+}
+
+template <class T>
+void World<T>::set_hinge_motor(JointId id, bool enable, T speed, T max_torque) {
+    const char* where = "World::set_hinge_motor";
+    Joint<T>& j = joints_[checked(id, where)];
+    if (j.type != JointType::hinge) detail::report_invalid(where, "the joint is not a hinge; its type", static_cast<double>(j.type));
+    detail::require_finite(speed, where, "speed");
+    detail::require_non_negative(max_torque, where, "max_torque");
+    j.enable_motor = enable;
+    j.motor_speed = speed;
+    j.max_motor_torque = max_torque;
+    bodies_[j.a.index].wake();
+    bodies_[j.b.index].wake();
+}
+
+template <class T>
+void World<T>::rebuild_joint_pairs() {
+    unconnected_pairs_.clear();
+    for (const Joint<T>& j : joints_)
+        if (j.alive && !j.collide_connected) unconnected_pairs_.push_back(pair_key(j.a.index, j.b.index));
+    std::sort(unconnected_pairs_.begin(), unconnected_pairs_.end());
+}
+
+template <class T>
+void World<T>::prepare_joints(T h) {
+    joint_rows_.clear();
+    const Softness<T> soft = Softness<T>::make(std::min(settings_.joint_hertz, T(0.25) / h), settings_.joint_damping_ratio, h);
+    const Softness<T> limit_soft = Softness<T>::make(std::min(settings_.contact_hertz, T(0.125) / h), settings_.contact_damping_ratio, h);
+    for (std::uint32_t i = 0; i < joints_.size(); ++i) {
+        Joint<T>& j = joints_[i];
+        if (!j.alive) continue;
+        JointConstraint<T> c;
+        c.joint = i;
+        c.a = solver_index_[j.a.index];
+        c.b = solver_index_[j.b.index];
+        if (c.a == 0 && c.b == 0) continue;  // both asleep or static
+        const Body<T>& a = bodies_[j.a.index];
+        const Body<T>& b = bodies_[j.b.index];
+        c.r_a0 = rotate(a.orientation_, j.local_anchor_a);
+        c.r_b0 = rotate(b.orientation_, j.local_anchor_b);
+        c.delta_center = b.position_ - a.position_;
+        c.axis_a0 = rotate(a.orientation_, j.local_axis_a);
+        c.axis_b0 = rotate(b.orientation_, j.local_axis_b);
+        c.qa0 = a.orientation_;
+        c.qb0 = b.orientation_;
+        c.softness = settings_.solver == SolverMode::soft_step ? soft : Softness<T>::make(T(0.25) / h, T(1), h);
+        c.limit_softness = settings_.solver == SolverMode::soft_step ? limit_soft : c.softness;
+        if (!settings_.warm_starting) {
+            j.linear_impulse = j.angular_impulse = Vec3<T>::zero();
+            j.axial_impulse = j.motor_impulse = T(0);
+        }
+        joint_rows_.push_back(c);
+    }
+}
+
+template <class T>
 void World<T>::reserve(std::size_t bodies, std::size_t contacts) {
     bodies_.reserve(bodies);
     bounds_.reserve(bodies);
@@ -305,6 +468,8 @@ void World<T>::destroy_body(BodyId id) {
                                        return gone;
                                    }),
                     contacts_.end());
+    for (std::uint32_t i = 0; i < joints_.size(); ++i)
+        if (joints_[i].alive && (joints_[i].a.index == slot || joints_[i].b.index == slot)) destroy_joint({i, joints_[i].generation});
     Body<T>& b = bodies_[slot];
     b.alive_ = false;
     b.shape_.reset();
@@ -498,7 +663,9 @@ void World<T>::narrow_phase(T dt) {
             drop();
             continue;
         }
-        if (!(a.layer_ & b.mask_) || !(b.layer_ & a.mask_) || (filter_ && !filter_(id_of(pair.a), id_of(pair.b)))) {
+        if (!(a.layer_ & b.mask_) || !(b.layer_ & a.mask_) ||
+            std::binary_search(unconnected_pairs_.begin(), unconnected_pairs_.end(), pair_key(pair.a, pair.b)) ||
+            (filter_ && !filter_(id_of(pair.a), id_of(pair.b)))) {
             drop();
             continue;
         }
@@ -543,8 +710,17 @@ void World<T>::wake_touched_islands() {
     bool changed = true;
     while (changed) {
         changed = false;
+        for (const Joint<T>& j : joints_) {
+            if (!j.alive) continue;
+            Body<T>& a = bodies_[j.a.index];
+            Body<T>& b = bodies_[j.b.index];
+            if (a.awake_ != b.awake_ && (active(a) || active(b))) {
+                if (a.type_ == BodyType::dynamic && !a.awake_) a.wake(), changed = true;
+                if (b.type_ == BodyType::dynamic && !b.awake_) b.wake(), changed = true;
+            }
+        }
         for (const Contact<T>& c : contacts_) {
-            if (!c.touching && c.manifold.count == 0) continue;
+            if (!c.touching) continue;  // speculative contacts do not wake: the sleeper acts as static until touched
             Body<T>& a = bodies_[c.a.index];
             Body<T>& b = bodies_[c.b.index];
             if (active(a) && !b.awake_ && b.type_ == BodyType::dynamic) {
@@ -579,6 +755,8 @@ void World<T>::prepare(T dt) {
         solver_slot_.push_back(i);
     }
     stats_.awake_bodies = solver_bodies_.size() - 1;
+
+    prepare_joints(h);
 
     // Contact rows.
     constraints_.clear();
@@ -679,16 +857,31 @@ void World<T>::solve(T dt) {
             in.angular_damping = b.angular_damping_;
             integrate_velocity(solver_bodies_[i], in, h);
         }
-        if (settings_.warm_starting) warm_start(constraints_, solver_bodies_);
+        if (settings_.warm_starting) {
+            for (const JointConstraint<T>& c : joint_rows_)
+                warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
+            warm_start(constraints_, solver_bodies_);
+        }
         pass.use_bias = true;
-        for (int it = 0; it < settings_.velocity_iterations; ++it) solve_contacts(constraints_, solver_bodies_, pass);
+        for (int it = 0; it < settings_.velocity_iterations; ++it) {
+            for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
+                for (const JointConstraint<T>& c : joint_rows_)
+                    solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
+            solve_contacts(constraints_, solver_bodies_, pass);
+        }
         for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
             const Body<T>& b = bodies_[solver_slot_[i]];
             const T max_speed = b.fast_ ? ScalarTraits<T>::max : settings_.max_linear_speed;
             integrate_position(solver_bodies_[i], h, max_speed, max_rotation);
         }
         pass.use_bias = false;
-        for (int it = 0; it < settings_.relax_iterations; ++it) solve_contacts(constraints_, solver_bodies_, pass);
+        for (int it = 0; it < settings_.relax_iterations; ++it) {
+            for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
+                for (const JointConstraint<T>& c : joint_rows_)
+                    solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], false, h);
+            solve_contacts(constraints_, solver_bodies_, pass);
+        }
+        solver_bodies_[0] = SolverBody<T>{};
         accumulate_step_impulses(constraints_);
     }
     apply_restitution(constraints_, solver_bodies_, settings_.restitution_threshold);
@@ -739,6 +932,9 @@ void World<T>::update_sleep(T dt) {
         if (a.type_ != BodyType::dynamic || b.type_ != BodyType::dynamic) continue;
         parent[find(c.a.index)] = find(c.b.index);
     }
+    for (const Joint<T>& j : joints_)
+        if (j.alive && bodies_[j.a.index].type_ == BodyType::dynamic && bodies_[j.b.index].type_ == BodyType::dynamic)
+            parent[find(j.a.index)] = find(j.b.index);
     // A body's sleep clock runs while it is slow; an island sleeps when all its clocks passed
     // sleep_time and none refuses to sleep or touches a moving kinematic body.
     const T lin_sq = settings_.sleep_linear_speed * settings_.sleep_linear_speed;

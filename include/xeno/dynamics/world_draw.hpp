@@ -37,7 +37,7 @@ Color body_color(BodyId id, const Body<T>& b) {
                                  {0.25f, 0.55f, 0.85f, 1}, {0.65f, 0.40f, 0.80f, 1}, {0.20f, 0.75f, 0.75f, 1},
                                  {0.85f, 0.45f, 0.60f, 1}, {0.60f, 0.60f, 0.30f, 1}};
     Color c = palette[(id.index * 5u) % 8u];
-    if (!b.awake()) c = {0.5f * c.r + 0.3f, 0.5f * c.g + 0.3f, 0.5f * c.b + 0.4f, 1.0f};  // asleep: faded blue-grey
+    if (!b.awake()) c = {0.25f * c.r + 0.55f, 0.25f * c.g + 0.58f, 0.25f * c.b + 0.68f, 1.0f};  // asleep: pale blue-grey
     return c;
 }
 

@@ -29,6 +29,11 @@ struct ScalarTraits {
     /// Relative tolerance for iterative geometry (MPR, hull building), scaled by the problem
     /// size: tight enough for contacts of 0.1 mm on 1 m bodies in float.
     static constexpr T geometric_tolerance = std::is_same_v<T, float> ? T(1e-5) : T(1e-9);
+    /// The sizes (metres) a shape may have: MPR's convergence test is of sixth order in lengths,
+    /// and within 1e-6 … 1e6 m in float (1e-50 … 1e50 m in double) it stays a normal number, so
+    /// queries are finite and right (float failed from 1e-7 and 1e8 m; docs/robustness.md, "Sizes").
+    static constexpr T min_size = T(std::is_same_v<T, float> ? 1e-6 : 1e-50);
+    static constexpr T max_size = T(std::is_same_v<T, float> ? 1e6 : 1e50);
 };
 
 /// x * x.

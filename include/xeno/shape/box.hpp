@@ -21,11 +21,12 @@ class Box {
 public:
     using scalar_type = T;
 
-    /// A box with the given half extents (metres); each must be finite and > 0.
+    /// A box with the given half extents (metres); each must be finite and within
+    /// [ScalarTraits<T>::min_size, max_size].
     explicit Box(const Vec3<T>& half_extents) : half_extents_(half_extents) {
-        detail::require_positive(half_extents.x, "Box", "half_extents.x");
-        detail::require_positive(half_extents.y, "Box", "half_extents.y");
-        detail::require_positive(half_extents.z, "Box", "half_extents.z");
+        detail::require_size(half_extents.x, "Box", "half_extents.x");
+        detail::require_size(half_extents.y, "Box", "half_extents.y");
+        detail::require_size(half_extents.z, "Box", "half_extents.z");
     }
     /// A box with half extents (hx, hy, hz).
     Box(T hx, T hy, T hz) : Box(Vec3<T>{hx, hy, hz}) {}

@@ -22,10 +22,12 @@ class Capsule {
 public:
     using scalar_type = T;
 
-    /// radius > 0 and half_height >= 0 (0 is a sphere), both finite, in metres.
+    /// radius within [ScalarTraits<T>::min_size, max_size] and half_height in [0, max_size] (0 is
+    /// a sphere), both finite, in metres.
     Capsule(T radius, T half_height) : radius_(radius), half_height_(half_height) {
-        detail::require_positive(radius, "Capsule", "radius");
+        detail::require_size(radius, "Capsule", "radius");
         detail::require_non_negative(half_height, "Capsule", "half_height");
+        if (half_height > ScalarTraits<T>::max_size) detail::require_size(half_height, "Capsule", "half_height");
     }
 
     T radius() const { return radius_; }

@@ -25,10 +25,11 @@ public:
     /// Vertices of the polygon that stands for the base in support_face().
     static constexpr int base_segments = 12;
 
-    /// radius (of the base) and height in metres, finite and > 0.
+    /// radius (of the base) and height in metres, finite and within
+    /// [ScalarTraits<T>::min_size, max_size].
     Cone(T radius, T height) : radius_(radius), height_(height) {
-        detail::require_positive(radius, "Cone", "radius");
-        detail::require_positive(height, "Cone", "height");
+        detail::require_size(radius, "Cone", "radius");
+        detail::require_size(height, "Cone", "height");
         sin_alpha_ = radius_ / std::sqrt(radius_ * radius_ + height_ * height_);
     }
 

@@ -160,6 +160,10 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
         zs_.push_back(v.z);
     }
     const T scale = length(bounds_.max - bounds_.min);
+    // The size of the polyhedron (and its distance from the local origin) must be one the narrow
+    // phase can compute in (ScalarTraits<T>::min_size, max_size).
+    detail::require_size(scale, where, "size (bounding-box diagonal)");
+    if (radius_ > ScalarTraits<T>::max_size) detail::require_size(radius_, where, "distance of a vertex from the local origin");
     const T tolerance = T(64) * ScalarTraits<T>::geometric_tolerance * scale;
 
     // Faces: indices, normals (Newell's method: robust for any planar polygon), planarity.

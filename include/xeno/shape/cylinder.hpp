@@ -24,10 +24,10 @@ public:
     /// Vertices of the polygon that stands for a cap in support_face().
     static constexpr int cap_segments = 12;
 
-    /// radius and half_height in metres, finite and > 0.
+    /// radius and half_height in metres, finite and within [ScalarTraits<T>::min_size, max_size].
     Cylinder(T radius, T half_height) : radius_(radius), half_height_(half_height) {
-        detail::require_positive(radius, "Cylinder", "radius");
-        detail::require_positive(half_height, "Cylinder", "half_height");
+        detail::require_size(radius, "Cylinder", "radius");
+        detail::require_size(half_height, "Cylinder", "half_height");
     }
 
     T radius() const { return radius_; }

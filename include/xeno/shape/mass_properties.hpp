@@ -78,6 +78,11 @@ MassProperties<typename Shape::scalar_type> mass_properties(const Shape& shape,
     MassProperties<T> m = shape.unit_mass_properties();
     m.mass *= density;
     m.inertia = m.inertia * density;
+    // Density × volume (× length² for the inertia) can leave the range of T at finite inputs.
+    if (!(std::isfinite(m.mass) && m.mass > T(0) && is_finite(m.inertia) && m.inertia[0].x > T(0) &&
+          m.inertia[1].y > T(0) && m.inertia[2].z > T(0)))
+        detail::report_invalid("mass_properties", "mass (density x volume) and inertia must be finite and > 0 in this precision; density",
+                               static_cast<double>(density));
     return m;
 }
 

@@ -20,8 +20,8 @@ class Sphere {
 public:
     using scalar_type = T;
 
-    /// radius in metres, finite and > 0.
-    explicit Sphere(T radius) : radius_(radius) { detail::require_positive(radius, "Sphere", "radius"); }
+    /// radius in metres, finite and within [ScalarTraits<T>::min_size, max_size].
+    explicit Sphere(T radius) : radius_(radius) { detail::require_size(radius, "Sphere", "radius"); }
 
     T radius() const { return radius_; }
     Vec3<T> support(const Vec3<T>& d) const { return normalized_or(d, Vec3<T>::unit_y()) * radius_; }

@@ -1,0 +1,188 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Joints against closed forms: a pendulum's period, a hanging chain's length, a door's limit, a
+// motor's speed, a weld.
+#include "support/approx.hpp"
+#include "support/sim.hpp"
+
+#include "scenes/features.hpp"
+
+using namespace xeno;
+using xeno::test::near;
+
+namespace {
+template <class T>
+BodyId anchor_body(World<T>& w, const Vec3<T>& at) {
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    d.position = at;
+    return w.create_body(Box<T>(T(0.05), T(0.05), T(0.05)), d);
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("a pendulum's small-angle period is 2 pi sqrt(L/g) within 1 %", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    const T length_m = T(2), r = T(0.05), angle = radians(T(4));
+    const Vec3<T> pivot{T(0), T(5), T(0)};
+    const BodyId top = anchor_body(w, pivot);
+    BodyDef<T> bob;
+    bob.position = pivot + Vec3<T>{std::sin(angle), -std::cos(angle), T(0)} * length_m;
+    const BodyId ball = w.create_body(Sphere<T>(r), bob);
+    w.create_joint(JointDef<T>::ball(top, ball, pivot));
+    // Count upward zero crossings of x over 20 s, interpolating the crossing times.
+    std::vector<T> crossings;
+    T previous = w.body(ball).position().x;
+    int step = 0;
+    test::simulate(w, T(20), [&](int) {
+        ++step;
+        const T x = w.body(ball).position().x;
+        if (previous < T(0) && x >= T(0)) crossings.push_back((T(step - 1) + previous / (previous - x)) / T(60));
+        previous = x;
+    });
+    REQUIRE(crossings.size() >= 5);
+    const T period = (crossings.back() - crossings.front()) / T(crossings.size() - 1);
+    // A ball of radius r on a massless rod: I = m L² + 2/5 m r² about the pivot.
+    const T expected = T(2) * ScalarTraits<T>::pi * std::sqrt(length_m / T(9.81)) * std::sqrt(T(1) + T(0.4) * r * r / (length_m * length_m));
+    CAPTURE(period);
+    CAPTURE(expected);
+    CHECK(std::abs(period - expected) < T(0.01) * expected);
+    // The amplitude survives: the joint adds no large damping.
+    T amplitude = T(0);
+    test::simulate(w, T(2), [&](int) { amplitude = std::max(amplitude, w.body(ball).position().x); });
+    CHECK(amplitude > T(0.8) * length_m * std::sin(angle));
+}
+
+TEST_CASE_TEMPLATE("a 20-link chain released horizontally never stretches more than 1 %", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    const Vec3<T> pivot{T(0), T(12), T(0)};
+    BodyId previous = anchor_body(w, pivot);
+    const T link = T(0.5);
+    std::vector<JointId> joints;
+    const Quat<T> along_x = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), ScalarTraits<T>::pi / 2);
+    for (int i = 0; i < 20; ++i) {
+        BodyDef<T> d;
+        d.position = pivot + Vec3<T>{link * (T(i) + T(0.5)), T(0), T(0)};
+        d.orientation = along_x;
+        const BodyId body = w.create_body(Capsule<T>(T(0.05), T(0.2)), d);
+        joints.push_back(w.create_joint(JointDef<T>::ball(previous, body, pivot + Vec3<T>{link * T(i), T(0), T(0)})));
+        previous = body;
+    }
+    T worst = T(0);
+    test::simulate(w, T(10), [&](int) {
+        T gap = T(0);
+        for (JointId id : joints) {
+            const Joint<T>& j = w.joint(id);
+            gap += distance(w.body(j.a).world_point(j.local_anchor_a), w.body(j.b).world_point(j.local_anchor_b));
+        }
+        worst = std::max(worst, gap / (T(20) * link));
+    });
+    CAPTURE(worst);
+    CHECK(worst < T(0.01));
+}
+
+TEST_CASE_TEMPLATE("a hinged door stops at its limit", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    scenes::add_ground(w);
+    const BodyId frame = anchor_body(w, Vec3<T>{T(0), T(1.1), T(0)});
+    BodyDef<T> d;
+    d.position = {T(0.5), T(1.1), T(0)};
+    d.angular_velocity = {T(0), T(4), T(0)};  // swung open about the vertical hinge
+    const BodyId door = w.create_body(Box<T>(T(0.5), T(1), T(0.02)), d);
+    JointDef<T> hinge = JointDef<T>::hinge(frame, door, Vec3<T>{T(0), T(1.1), T(0)}, Vec3<T>::unit_y());
+    hinge.enable_limit = true;
+    hinge.lower_angle = T(-0.1);
+    hinge.upper_angle = ScalarTraits<T>::pi / 2;
+    const JointId id = w.create_joint(hinge);
+    T most = T(0);
+    test::simulate(w, T(3), [&](int) { most = std::max(most, w.hinge_angle(id)); });
+    CAPTURE(most);
+    CHECK(most < hinge.upper_angle + T(0.03));
+    CHECK(most > hinge.upper_angle - T(0.05));          // it reached the stop
+    // It stays at the stop: any rebound is a small fraction of the impact speed (about 1 rad/s).
+    CHECK(near(w.hinge_angle(id), hinge.upper_angle, T(0.05)));
+    CHECK(std::abs(w.body(door).angular_velocity().y) < T(0.02));
+    const Joint<T>& j = w.joint(id);
+    CHECK(distance(w.body(frame).world_point(j.local_anchor_a), w.body(door).world_point(j.local_anchor_b)) < T(1e-3));
+    // The hinge keeps the door upright: its axis stays vertical.
+    CHECK(rotate(w.body(door).orientation(), Vec3<T>::unit_y()).y > T(0.999));
+}
+
+TEST_CASE_TEMPLATE("a hinge motor spins a wheel at its target speed and a weld holds two boxes as one", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    const BodyId axle = anchor_body(w, Vec3<T>{T(0), T(3), T(0)});
+    BodyDef<T> d;
+    d.position = {T(0), T(3), T(0)};
+    d.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_x(), ScalarTraits<T>::pi / 2);  // cylinder axis along z
+    const BodyId wheel = w.create_body(Cylinder<T>(T(0.5), T(0.1)), d);
+    JointDef<T> motor = JointDef<T>::hinge(axle, wheel, Vec3<T>{T(0), T(3), T(0)}, Vec3<T>::unit_z());
+    motor.enable_motor = true;
+    motor.motor_speed = T(3);
+    motor.max_motor_torque = T(500);
+    const JointId id = w.create_joint(motor);
+    test::simulate(w, T(2));
+    CHECK(near(w.body(wheel).angular_velocity().z, T(3), T(1e-3)));
+    w.set_hinge_motor(id, true, T(-1), T(500));
+    test::simulate(w, T(1));
+    CHECK(near(w.body(wheel).angular_velocity().z, T(-1), T(1e-3)));
+
+    // Two boxes welded off-centre fall and tumble as one body: their relative pose stays.
+    BodyDef<T> p;
+    p.position = {T(5), T(5), T(0)};
+    p.angular_velocity = {T(1), T(2), T(0)};
+    const BodyId left = w.create_body(Box<T>(T(0.5), T(0.2), T(0.2)), p);
+    p.position = {T(6), T(5.3), T(0)};
+    const BodyId right = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), p);
+    w.create_joint(JointDef<T>::fixed(left, right, Vec3<T>{T(5.5), T(5.1), T(0)}));
+    const Transform<T> relative0 = inverse(w.body(left).transform()) * w.body(right).transform();
+    test::simulate(w, T(1));
+    const Transform<T> relative = inverse(w.body(left).transform()) * w.body(right).transform();
+    CHECK(length(relative.position - relative0.position) < T(5e-3));
+    CHECK(angle_between(relative.orientation, relative0.orientation) < T(5e-3));
+}
+
+TEST_CASE_TEMPLATE("bad joint definitions are reported and destroyed bodies take their joints along", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    const BodyId fixed = anchor_body(w, Vec3<T>{});
+    const BodyId other = anchor_body(w, Vec3<T>{T(1), T(0), T(0)});
+    const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)));
+    CHECK_THROWS_AS(w.create_joint(JointDef<T>::ball(box, box, Vec3<T>{})), InvalidArgument);
+    CHECK_THROWS_AS(w.create_joint(JointDef<T>::ball(fixed, other, Vec3<T>{})), InvalidArgument);
+    CHECK_THROWS_AS(w.create_joint(JointDef<T>::ball(fixed, BodyId{}, Vec3<T>{})), InvalidArgument);
+    CHECK_THROWS_AS(w.create_joint(JointDef<T>::hinge(fixed, box, Vec3<T>{}, Vec3<T>{})), InvalidArgument);
+    CHECK_THROWS_AS(w.create_joint(JointDef<T>::ball(fixed, box, Vec3<T>{std::numeric_limits<T>::quiet_NaN(), T(0), T(0)})), InvalidArgument);
+    JointDef<T> bad_limit = JointDef<T>::hinge(fixed, box, Vec3<T>{}, Vec3<T>::unit_y());
+    bad_limit.enable_limit = true;
+    bad_limit.lower_angle = T(1);
+    bad_limit.upper_angle = T(-1);
+    CHECK_THROWS_AS(w.create_joint(bad_limit), InvalidArgument);
+    const JointId j = w.create_joint(JointDef<T>::ball(fixed, box, Vec3<T>{T(0), T(0.5), T(0)}));
+    CHECK(w.contains(j));
+    w.destroy_body(box);
+    CHECK_FALSE(w.contains(j));
+    CHECK_THROWS_AS(w.joint(j), InvalidArgument);
+    CHECK_THROWS_AS(w.destroy_joint(j), InvalidArgument);
+}
+
+TEST_CASE_TEMPLATE("a ragdoll falls onto a step and settles with its joints holding", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    const scenes::Scene scene = scenes::ragdoll(w);
+    auto gap = [&] {
+        T worst = T(0);
+        for (std::uint32_t i = 0; i < 9; ++i) {
+            const Joint<T>& j = w.joint(JointId{i, 0});
+            worst = std::max(worst, distance(w.body(j.a).world_point(j.local_anchor_a), w.body(j.b).world_point(j.local_anchor_b)));
+        }
+        return worst;
+    };
+    T worst_gap = T(0);
+    test::simulate(w, T(6), [&](int) { worst_gap = std::max(worst_gap, gap()); });
+    CAPTURE(worst_gap);
+    CHECK(worst_gap < T(0.03));  // soft joints give a little on impact (falling 2 m) ...
+    CHECK(gap() < T(0.002));     // ... and close up at rest
+    CHECK(test::kinetic_energy(w) < T(0.05));
+    for (BodyId id : scene.bodies) {
+        CHECK(w.body(id).position().y > T(0));   // on the ground or the step, not under
+        CHECK(w.body(id).position().y < T(1.5));  // and down
+    }
+}
