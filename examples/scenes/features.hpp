@@ -154,7 +154,8 @@ Scene hinged_door(World<T>& world) {
 }
 
 /// A ragdoll of capsules (torso, head, arms, legs) joined by ball joints at the shoulders and
-/// hips and hinges at the elbows and knees, dropped onto a step.
+/// hips and hinges at the elbows and knees, dropped onto a step. The parts have some angular
+/// damping, as ragdolls in games do.
 template <class T>
 Scene ragdoll(World<T>& world, const Vec3<T>& at = {T(0), T(3), T(0)}) {
     Scene s;
@@ -164,6 +165,7 @@ Scene ragdoll(World<T>& world, const Vec3<T>& at = {T(0), T(3), T(0)}) {
         BodyDef<T> d;
         d.position = at + centre;
         d.orientation = q;
+        d.angular_damping = T(1);  // limbs lose spin (capsules would otherwise roll for ever)
         s.bodies.push_back(world.create_body(Capsule<T>(radius, half), d));
         return s.bodies.back();
     };
