@@ -5,6 +5,7 @@
 // build by name. Names are those of the renderer issue (thesis scenarios 1–8, then ours).
 #pragma once
 
+#include "compounds.hpp"
 #include "features.hpp"
 #include "piles.hpp"
 #include "stacks.hpp"
@@ -40,6 +41,7 @@ inline const std::vector<std::pair<std::string, std::string>>& scene_list() {
         {"chain", "20 capsule links on ball joints, released horizontally"},
         {"hinged-door", "a door on a hinge swung open against its 90-degree stop"},
         {"ragdoll", "capsules joined by ball joints and limited hinges, dropped on a step"},
+        {"compound-stack", "compound bodies stacked: four L-shapes and three tables"},
     };
     return list;
 }
@@ -68,6 +70,7 @@ Scene build(const std::string& name, World<T>& world) {
     if (name == "chain") return chain(world);
     if (name == "hinged-door") return hinged_door(world);
     if (name == "ragdoll") return ragdoll(world);
+    if (name == "compound-stack") return compound_stack(world);
     xeno::detail::report_invalid(("xeno::scenes::build: unknown scene '" + name + "'").c_str(), "name length", static_cast<double>(name.size()));
 }
 

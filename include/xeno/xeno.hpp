@@ -15,6 +15,7 @@
 #include "math/transform.hpp"
 #include "math/vec3.hpp"
 #include "shape/box.hpp"
+#include "shape/compound.hpp"
 #include "shape/capsule.hpp"
 #include "shape/cone.hpp"
 #include "shape/convex_polyhedron.hpp"

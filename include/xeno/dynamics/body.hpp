@@ -13,6 +13,7 @@
 // reference. Setters check their input at the door and wake the body.
 #pragma once
 
+#include "../shape/compound.hpp"
 #include "../shape/shape.hpp"
 #include "material.hpp"
 
@@ -67,8 +68,25 @@ public:
     BodyType type() const { return type_; }
     bool is_static() const { return type_ == BodyType::static_body; }
     bool is_dynamic() const { return type_ == BodyType::dynamic; }
-    const Shape<T>& shape() const { return *shape_; }
+    /// The body's convex shape; for a compound body, its first child's shape (see child_shape).
+    const Shape<T>& shape() const { return compound_ ? compound_->children().front().shape : *shape_; }
     const std::shared_ptr<const Shape<T>>& shared_shape() const { return shape_; }
+    /// The compound, or nullptr for a body of one convex shape.
+    const Compound<T>* compound() const { return compound_.get(); }
+    /// Convex parts: 1 for a simple body, the children of a compound.
+    std::uint32_t child_count() const { return compound_ ? static_cast<std::uint32_t>(compound_->size()) : 1u; }
+    const Shape<T>& child_shape(std::uint32_t i) const { return compound_ ? compound_->children()[i].shape : *shape_; }
+    /// World placement of part i.
+    Transform<T> child_transform(std::uint32_t i) const {
+        return compound_ ? transform() * compound_->children()[i].local : transform();
+    }
+    /// World bounding box of the whole body (every part).
+    Aabb<T> world_bounds() const {
+        if (!compound_) return xeno::world_bounds(*shape_, transform());
+        Aabb<T> box;
+        for (std::uint32_t i = 0; i < child_count(); ++i) box.merge(xeno::world_bounds(child_shape(i), child_transform(i)));
+        return box;
+    }
 
     const Vec3<T>& position() const { return position_; }              ///< m, the centre of mass
     const Quat<T>& orientation() const { return orientation_; }
@@ -155,7 +173,8 @@ private:
     friend class World<T>;
     void require_finite(const Vec3<T>& v, const char* where, const char* what) const;
 
-    std::shared_ptr<const Shape<T>> shape_;
+    std::shared_ptr<const Shape<T>> shape_;        ///< the convex shape (null for compounds)
+    std::shared_ptr<const Compound<T>> compound_;  ///< the parts (null for one convex shape)
     Vec3<T> position_{};
     Quat<T> orientation_ = Quat<T>::identity();
     Vec3<T> linear_velocity_{};
@@ -283,7 +302,7 @@ void Body<T>::set_mass_properties(const MassProperties<T>& m) {
     const char* where = "Body::set_mass_properties";
     if (type_ != BodyType::dynamic) detail::report_invalid(where, "only dynamic bodies have mass; body type", static_cast<double>(type_));
     detail::require_positive(m.mass, where, "mass");
-    if (length(m.center) > T(1e-6) * (T(1) + bounding_radius(*shape_)))
+    if (length(m.center) > T(1e-6) * (T(1) + (compound_ ? compound_->bounding_radius() : bounding_radius(*shape_))))
         detail::report_invalid(where, "center must be 0 (the body's position is its centre of mass); |center|", static_cast<double>(length(m.center)));
     // Symmetric (up to round-off, as R I Rᵀ leaves it) and positive definite by Sylvester's criterion:
     // the leading principal minors are positive.

@@ -44,6 +44,7 @@ namespace xeno {
 template <class T>
 struct Contact {
     BodyId a, b;
+    std::uint32_t child_a = 0, child_b = 0;  ///< the touching parts (compound bodies; 0 otherwise)
     Manifold<T> manifold;
     T friction{}, restitution{};  ///< combined from the two materials
     bool touching = false;        ///< some point overlaps, or pushed during the last step
@@ -110,6 +111,12 @@ public:
     /// Convenience: the shape is copied into a new shared shape.
     BodyId create_body(const Shape<T>& shape, const BodyDef<T>& def = {}) {
         return create_body(std::make_shared<const Shape<T>>(shape), def);
+    }
+    /// A compound body (several convex parts); the compound is already centred on its centre of
+    /// mass, so def.position is where that centre goes.
+    BodyId create_body(std::shared_ptr<const Compound<T>> compound, const BodyDef<T>& def = {});
+    BodyId create_body(const Compound<T>& compound, const BodyDef<T>& def = {}) {
+        return create_body(std::make_shared<const Compound<T>>(compound), def);
     }
     /// Removes the body and every contact it had; bodies resting on it wake up. The handle
     /// (and every copy of it) becomes stale.
@@ -205,6 +212,8 @@ private:
         return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
     }
     void rebuild_joint_pairs();
+    BodyId create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound, const BodyDef<T>& def);
+    void collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, std::vector<Contact<T>>& next);
     void prepare_joints(T h);
     BodyId id_of(std::uint32_t slot) const { return {slot, bodies_[slot].generation_}; }
     /// An awake dynamic body, or a kinematic body with a velocity: something that can push.
@@ -251,8 +260,20 @@ private:
 
 template <class T>
 BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDef<T>& def) {
+    if (!shape) detail::report_invalid("World::create_body", "shape must not be null", 0.0);
+    return create_body_impl(std::move(shape), nullptr, def);
+}
+
+template <class T>
+BodyId World<T>::create_body(std::shared_ptr<const Compound<T>> compound, const BodyDef<T>& def) {
+    if (!compound) detail::report_invalid("World::create_body", "compound must not be null", 0.0);
+    return create_body_impl(nullptr, std::move(compound), def);
+}
+
+template <class T>
+BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
+                                  const BodyDef<T>& def) {
     const char* where = "World::create_body";
-    if (!shape) detail::report_invalid(where, "shape must not be null", 0.0);
     if (!is_finite(def.position)) detail::report_invalid(where, "position must be finite, x + y + z", static_cast<double>(def.position.x + def.position.y + def.position.z));
     if (!is_finite(def.orientation) || !(length_squared(def.orientation) > T(0)))
         detail::report_invalid(where, "orientation must be a finite, non-zero quaternion, w", static_cast<double>(def.orientation.w));
@@ -262,15 +283,20 @@ BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDe
     detail::require_non_negative(def.linear_damping, where, "linear_damping");
     detail::require_non_negative(def.angular_damping, where, "angular_damping");
     detail::require_finite(def.gravity_scale, where, "gravity_scale");
-    const Vec3<T> centre = interior_point(*shape);
-    if (length(centre) > T(1e-4) * bounding_radius(*shape))
+    const Vec3<T> centre = shape ? interior_point(*shape) : Vec3<T>::zero();
+    if (shape && length(centre) > T(1e-4) * bounding_radius(*shape))
         detail::report_invalid(where, "the shape's centre of mass must be its local origin (make_convex_hull and ConvexPolyhedron::recentered() re-centre); distance (m)", static_cast<double>(length(centre)));
 
     // Mass properties before a slot is taken, so a rejected body leaves no trace.
     MassProperties<T> mass;
     if (def.type == BodyType::dynamic) {
         detail::require_non_negative(def.mass, where, "mass");
-        mass = def.mass > T(0) ? mass_properties(*shape, T(1)) : mass_properties(*shape, def.density);
+        detail::require_positive(def.density, where, "density");
+        mass = shape ? mass_properties(*shape, T(1)) : compound->unit_mass_properties();
+        if (def.mass <= T(0)) {
+            mass.mass *= def.density;
+            mass.inertia = mass.inertia * def.density;
+        }
         if (def.mass > T(0)) {
             mass.inertia = mass.inertia * (def.mass / mass.mass);
             mass.mass = def.mass;
@@ -295,6 +321,7 @@ BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDe
     b.generation_ = generation;
     b.alive_ = true;
     b.shape_ = std::move(shape);
+    b.compound_ = std::move(compound);
     b.type_ = def.type;
     b.position_ = def.position;
     b.orientation_ = normalized(def.orientation);
@@ -314,7 +341,7 @@ BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDe
     }
     if (def.type == BodyType::dynamic) b.set_mass_properties(mass);
     b.moved_ = true;
-    bounds_[slot] = world_bounds(*b.shape_, b.transform());
+    bounds_[slot] = b.world_bounds();
     previous_pose_[slot] = b.transform();
     return {slot, b.generation_};
 }
@@ -473,6 +500,7 @@ void World<T>::destroy_body(BodyId id) {
     Body<T>& b = bodies_[slot];
     b.alive_ = false;
     b.shape_.reset();
+    b.compound_.reset();
     ++b.generation_;
     bounds_[slot] = Aabb<T>{};
     free_slots_.push_back(slot);
@@ -491,7 +519,7 @@ void World<T>::set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& 
     b.moved_ = true;
     b.wake();
     previous_pose_[slot] = b.transform();
-    bounds_[slot] = world_bounds(*b.shape_, b.transform()).expanded(settings_.speculative_distance);
+    bounds_[slot] = b.world_bounds().expanded(settings_.speculative_distance);
     wake_contacts_of(slot);
 }
 
@@ -506,7 +534,11 @@ std::vector<WorldRayHit<T>> World<T>::raycast_all(const Ray<T>& ray) const {
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         const Body<T>& b = bodies_[i];
         if (!b.alive_ || !xeno::raycast(bounds_[i], ray)) continue;
-        if (const std::optional<RayHit<T>> hit = xeno::raycast(*b.shape_, b.transform(), ray)) hits.push_back({id_of(i), *hit});
+        std::optional<RayHit<T>> nearest;
+        for (std::uint32_t k = 0; k < b.child_count(); ++k)
+            if (const std::optional<RayHit<T>> hit = xeno::raycast(b.child_shape(k), b.child_transform(k), ray))
+                if (!nearest || hit->distance < nearest->distance) nearest = hit;
+        if (nearest) hits.push_back({id_of(i), *nearest});
     }
     std::sort(hits.begin(), hits.end(), [](const WorldRayHit<T>& x, const WorldRayHit<T>& y) {
         return x.hit.distance != y.hit.distance ? x.hit.distance < y.hit.distance : x.body.index < y.body.index;
@@ -526,8 +558,12 @@ std::vector<BodyId> World<T>::query_point(const Vec3<T>& point) const {
     if (!is_finite(point)) detail::report_invalid("World::query_point", "point must be finite, x + y + z", static_cast<double>(point.x + point.y + point.z));
     std::vector<BodyId> out;
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
-        if (bodies_[i].alive_ && bounds_[i].contains(point) && contains_point(*bodies_[i].shape_, bodies_[i].transform(), point))
-            out.push_back(id_of(i));
+        if (bodies_[i].alive_ && bounds_[i].contains(point))
+            for (std::uint32_t k = 0; k < bodies_[i].child_count(); ++k)
+                if (contains_point(bodies_[i].child_shape(k), bodies_[i].child_transform(k), point)) {
+                    out.push_back(id_of(i));
+                    break;
+                }
     return out;
 }
 
@@ -536,7 +572,7 @@ std::vector<BodyId> World<T>::query_aabb(const Aabb<T>& box) const {
     if (!is_finite(box.min) || !is_finite(box.max)) detail::report_invalid("World::query_aabb", "box must be finite, min.x", static_cast<double>(box.min.x));
     std::vector<BodyId> out;
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
-        if (bodies_[i].alive_ && overlaps(bounds_[i], box) && overlaps(world_bounds(*bodies_[i].shape_, bodies_[i].transform()), box))
+        if (bodies_[i].alive_ && overlaps(bounds_[i], box) && overlaps(bodies_[i].world_bounds(), box))
             out.push_back(id_of(i));
     return out;
 }
@@ -634,7 +670,7 @@ void World<T>::update_bounds(T dt) {
         if (!b.alive_) continue;
         if (b.type_ == BodyType::static_body && !b.moved_) continue;
         const T reach = settings_.speculative_distance + length(b.linear_velocity_) * dt;
-        bounds_[i] = world_bounds(*b.shape_, b.transform()).expanded(reach);
+        bounds_[i] = b.world_bounds().expanded(reach);
         b.moved_ = false;
     }
 }
@@ -642,65 +678,84 @@ void World<T>::update_bounds(T dt) {
 template <class T>
 void World<T>::narrow_phase(T dt) {
     std::vector<Contact<T>> next;
-    next.reserve(pairs_.size());
+    next.reserve(contacts_.size() + pairs_.size() / 4);
     std::size_t old = 0;
-    // Last step's contacts that this step does not carry on have ended.
-    auto skip_old_before = [&](const ProxyPair& pair) {
+    for (const ProxyPair& pair : pairs_) {
+        // Merge-join with last step's contacts (both sorted by body pair, then by parts): those
+        // before this pair are not carried on and have ended.
         while (old < contacts_.size() &&
                (contacts_[old].a.index < pair.a || (contacts_[old].a.index == pair.a && contacts_[old].b.index < pair.b)))
             end_contact(contacts_[old++]);
-    };
-    for (const ProxyPair& pair : pairs_) {
-        // Merge-join with last step's contacts (both sorted by pair).
-        skip_old_before(pair);
-        const bool had = old < contacts_.size() && contacts_[old].a.index == pair.a && contacts_[old].b.index == pair.b;
-        Body<T>& a = bodies_[pair.a];
-        Body<T>& b = bodies_[pair.b];
-        const auto drop = [&] {
-            if (had) end_contact(contacts_[old++]);
-        };
-        if (a.type_ != BodyType::dynamic && b.type_ != BodyType::dynamic) {
-            drop();
+        std::size_t old_end = old;
+        while (old_end < contacts_.size() && contacts_[old_end].a.index == pair.a && contacts_[old_end].b.index == pair.b) ++old_end;
+        const Body<T>& a = bodies_[pair.a];
+        const Body<T>& b = bodies_[pair.b];
+        const bool wanted = (a.type_ == BodyType::dynamic || b.type_ == BodyType::dynamic) && (a.layer_ & b.mask_) &&
+                            (b.layer_ & a.mask_) &&
+                            !std::binary_search(unconnected_pairs_.begin(), unconnected_pairs_.end(), pair_key(pair.a, pair.b)) &&
+                            !(filter_ && !filter_(id_of(pair.a), id_of(pair.b)));
+        if (!wanted) {
+            for (; old < old_end; ++old) end_contact(contacts_[old]);
             continue;
         }
-        if (!(a.layer_ & b.mask_) || !(b.layer_ & a.mask_) ||
-            std::binary_search(unconnected_pairs_.begin(), unconnected_pairs_.end(), pair_key(pair.a, pair.b)) ||
-            (filter_ && !filter_(id_of(pair.a), id_of(pair.b)))) {
-            drop();
-            continue;
-        }
-        if (!active(a) && !active(b)) {  // both asleep (or asleep on static): keep the contact as it was
-            if (had) {
-                next.push_back(contacts_[old++]);
+        if (!active(a) && !active(b)) {  // both asleep (or asleep on static): keep the contacts as they were
+            for (; old < old_end; ++old) {
+                next.push_back(contacts_[old]);
                 next.back().was_touching = next.back().touching;
             }
             continue;
         }
         const T margin = settings_.speculative_distance + (length(a.linear_velocity_) + length(b.linear_velocity_)) * dt;
-        const ContactManifold<T> fresh = generate_contacts(*a.shape_, a.transform(), *b.shape_, b.transform(), margin);
-        if (fresh.count == 0) {  // apart: the contact (if any) ends
-            drop();
-            continue;
-        }
-        Contact<T> c;
-        if (had) c = contacts_[old++];
-        c.was_touching = had && c.touching;
-        c.a = id_of(pair.a);
-        c.b = id_of(pair.b);
-        c.friction = combined_friction(a.material_, b.material_);
-        c.restitution = combined_restitution(a.material_, b.material_);
-        c.sensor = a.sensor_ || b.sensor_;
-        if (fresh.count == 1 && had && c.manifold.count > 0)
-            c.manifold.merge_single(fresh.points[0], fresh.normal, a.transform(), b.transform(), settings_.contact_match_distance, margin);
-        else
-            c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
-        c.touching = c.manifold.touching();
-        for (int i = 0; i < c.manifold.count; ++i) c.manifold.points[static_cast<std::size_t>(i)].step_impulse = T(0);
-        next.push_back(c);
+        collide_pair(pair, margin, old, old_end, next);
+        old = old_end;
     }
     while (old < contacts_.size()) end_contact(contacts_[old++]);
     contacts_.swap(next);
     stats_.contacts = contacts_.size();
+}
+
+template <class T>
+void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, std::vector<Contact<T>>& next) {
+    const Body<T>& a = bodies_[pair.a];
+    const Body<T>& b = bodies_[pair.b];
+    const bool parts = a.compound_ || b.compound_;
+    std::size_t old = old_begin;
+    for (std::uint32_t ca = 0; ca < a.child_count(); ++ca) {
+        const Transform<T> pose_a = a.child_transform(ca);
+        const Aabb<T> box_a = parts ? world_bounds(a.child_shape(ca), pose_a).expanded(margin) : Aabb<T>{};
+        for (std::uint32_t cb = 0; cb < b.child_count(); ++cb) {
+            // Last step's contact of these two parts, if any (both lists are in part order).
+            while (old < old_end && (contacts_[old].child_a < ca || (contacts_[old].child_a == ca && contacts_[old].child_b < cb)))
+                end_contact(contacts_[old++]);
+            const bool had = old < old_end && contacts_[old].child_a == ca && contacts_[old].child_b == cb;
+            const Transform<T> pose_b = b.child_transform(cb);
+            ContactManifold<T> fresh;
+            if (!parts || overlaps(box_a, world_bounds(b.child_shape(cb), pose_b)))
+                fresh = generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin);
+            if (fresh.count == 0) {  // apart: the contact (if any) ends
+                if (had) end_contact(contacts_[old++]);
+                continue;
+            }
+            Contact<T> c;
+            if (had) c = contacts_[old++];
+            c.was_touching = had && c.touching;
+            c.a = id_of(pair.a);
+            c.b = id_of(pair.b);
+            c.child_a = ca;
+            c.child_b = cb;
+            c.friction = combined_friction(a.material_, b.material_);
+            c.restitution = combined_restitution(a.material_, b.material_);
+            c.sensor = a.sensor_ || b.sensor_;
+            if (fresh.count == 1 && had && c.manifold.count > 0)
+                c.manifold.merge_single(fresh.points[0], fresh.normal, a.transform(), b.transform(), settings_.contact_match_distance, margin);
+            else
+                c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
+            c.touching = c.manifold.touching();
+            for (int i = 0; i < c.manifold.count; ++i) c.manifold.points[static_cast<std::size_t>(i)].step_impulse = T(0);
+            next.push_back(c);
+        }
+    }
+    for (; old < old_end; ++old) end_contact(contacts_[old]);
 }
 
 template <class T>

@@ -48,7 +48,8 @@ void draw_world(const World<T>& world, DebugDraw<T>& out, const DrawOptions<T>& 
         world.for_each_body([&](BodyId id, const Body<T>& b) {
             if (options.hide && options.hide(id)) return;
             const Color fill = body_color(id, b);
-            draw_shape(out, b.shape(), b.transform(), fill, Color{0.08f, 0.08f, 0.1f, 1.0f});
+            for (std::uint32_t k = 0; k < b.child_count(); ++k)
+                draw_shape(out, b.child_shape(k), b.child_transform(k), fill, Color{0.08f, 0.08f, 0.1f, 1.0f});
         });
     }
     if (options.contacts) {

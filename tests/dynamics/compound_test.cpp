@@ -1,0 +1,67 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Compound bodies: combined mass properties against closed forms, stacks of compounds, queries.
+#include "support/approx.hpp"
+#include "support/sim.hpp"
+
+#include "scenes/compounds.hpp"
+
+using namespace xeno;
+using xeno::test::near;
+
+TEST_CASE_TEMPLATE("two boxes side by side have the mass properties of one long box", T, float, double) {
+    const Compound<T> pair({{Box<T>(T(0.5), T(0.5), T(0.5)), {{T(0), T(0), T(0)}, Quat<T>::identity()}},
+                            {Box<T>(T(0.5), T(0.5), T(0.5)), {{T(1), T(0), T(0)}, Quat<T>::identity()}}});
+    CHECK(near(pair.shift(), Vec3<T>{T(0.5), T(0), T(0)}));
+    const MassProperties<T> m = mass_properties(pair, T(700));
+    const MassProperties<T> one = mass_properties(Box<T>(T(1), T(0.5), T(0.5)), T(700));
+    CHECK(near(m.mass, one.mass));
+    CHECK(near(m.inertia, one.inertia, T(1e-5)));
+    CHECK(near(pair.children()[0].local.position, Vec3<T>{T(-0.5), T(0), T(0)}));
+    // A turned part: a box along y turned to lie along x is the same box.
+    const Compound<T> turned({{Box<T>(T(0.5), T(1), T(0.5)), {{T(3), T(2), T(1)}, Quat<T>::from_axis_angle(Vec3<T>::unit_z(), ScalarTraits<T>::pi / 2)}}});
+    CHECK(near(mass_properties(turned, T(700)).inertia, one.inertia));
+    CHECK(near(turned.shift(), Vec3<T>{T(3), T(2), T(1)}));
+    CHECK_THROWS_AS(Compound<T>(std::vector<CompoundChild<T>>{}), InvalidArgument);
+}
+
+TEST_CASE_TEMPLATE("stacks of L-shapes and tables stand for 10 s", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    const scenes::Scene scene = scenes::compound_stack(w);
+    test::simulate(w, T(1));
+    std::vector<Vec3<T>> at_one;
+    for (BodyId id : scene.bodies) at_one.push_back(w.body(id).position());
+    test::simulate(w, T(9));
+    T creep = T(0);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) creep = std::max(creep, length(w.body(scene.bodies[i]).position() - at_one[i]));
+    CAPTURE(creep);
+    CHECK(creep < T(0.01));
+    // The top table is still on top: about two table heights up.
+    CHECK(w.body(scene.bodies.back()).position().y > T(1.5));
+    // Each table touches the one below with its four legs: four manifolds, one per leg.
+    int leg_contacts = 0;
+    for (const Contact<T>& c : w.contacts())
+        if ((c.a == scene.bodies[4] && c.b == scene.bodies[5]) || (c.a == scene.bodies[5] && c.b == scene.bodies[4])) ++leg_contacts;
+    CHECK(leg_contacts == 4);
+}
+
+TEST_CASE_TEMPLATE("ray casts and point queries see every part of a compound", T, float, double) {
+    World<T> w(test::awake_settings<T>());
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    const auto t = scenes::table<T>();
+    d.position = t->shift();
+    const BodyId id = w.create_body(t, d);
+    // Down through the top's middle: hits the top at y = 0.76.
+    const auto top = w.raycast(Ray<T>{{T(0), T(3), T(0)}, -Vec3<T>::unit_y(), T(10)});
+    REQUIRE(top);
+    CHECK(top->body == id);
+    CHECK(near(top->hit.point.y, T(0.76), T(1e-4)));
+    // Sideways under the top: hits a leg at x = -0.55.
+    const auto leg = w.raycast(Ray<T>{{T(-3), T(0.3), T(0.32)}, Vec3<T>::unit_x(), T(10)});
+    REQUIRE(leg);
+    CHECK(near(leg->hit.point.x, T(-0.55), T(1e-4)));
+    CHECK(w.query_point(Vec3<T>{T(0.52), T(0.2), T(-0.32)}).size() == 1);
+    CHECK(w.query_point(Vec3<T>{T(0), T(0.3), T(0)}).empty());  // under the top, between the legs
+}
