@@ -43,6 +43,7 @@
 #include "dynamics/joint.hpp"
 #include "dynamics/material.hpp"
 #include "dynamics/settings.hpp"
+#include "dynamics/snapshot.hpp"
 #include "dynamics/solver_body.hpp"
 #include "dynamics/world.hpp"
 #include "dynamics/world_draw.hpp"

@@ -24,6 +24,8 @@ namespace xeno {
 
 template <class T>
 class World;
+template <class T>
+struct SnapshotAccess;
 
 enum class BodyType : std::uint8_t { static_body, kinematic, dynamic };
 
@@ -171,6 +173,7 @@ public:
 
 private:
     friend class World<T>;
+    friend struct SnapshotAccess<T>;
     void require_finite(const Vec3<T>& v, const char* where, const char* what) const;
 
     std::shared_ptr<const Shape<T>> shape_;        ///< the convex shape (null for compounds)

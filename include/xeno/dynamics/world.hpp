@@ -196,6 +196,7 @@ public:
     Transform<T> interpolated_transform(BodyId id) const;
 
 private:
+    friend struct SnapshotAccess<T>;
     std::uint32_t checked(BodyId id, const char* where) const {
         if (!id.valid()) detail::report_invalid(where, "invalid body handle (default-constructed BodyId), index", -1.0);
         if (!contains(id))
@@ -302,6 +303,12 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
             mass.mass = def.mass;
         }
         mass.center = Vec3<T>::zero();
+        // Density (or mass) times the shape's volume and inertia can leave the range of T: reject
+        // here, not in set_mass_properties once the slot is taken.
+        if (!(std::isfinite(mass.mass) && mass.mass > T(0) && is_finite(mass.inertia) && mass.inertia[0].x > T(0) &&
+              mass.inertia[1].y > T(0) && mass.inertia[2].z > T(0)))
+            detail::report_invalid(where, "mass and inertia (density or mass times the shape's) must be finite and > 0 in this precision; mass",
+                                   static_cast<double>(mass.mass));
     }
 
     std::uint32_t slot;

@@ -18,6 +18,9 @@ namespace xeno {
 
 /// One convex part of a compound, placed in the compound's frame.
 template <class T>
+struct SnapshotAccess;
+
+template <class T>
 struct CompoundChild {
     Shape<T> shape;
     Transform<T> local{};  ///< the child's frame in the compound's frame
@@ -45,6 +48,9 @@ public:
     T bounding_radius() const { return radius_; }
 
 private:
+    friend struct SnapshotAccess<T>;
+    Compound() = default;
+
     std::vector<CompoundChild<T>> children_;
     Vec3<T> shift_{};
     MassProperties<T> unit_mass_{};
