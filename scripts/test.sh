@@ -35,9 +35,17 @@ fi
 step "g++ Release, -Werror, all targets"
 configure_and_test gcc -DCMAKE_CXX_COMPILER=g++
 
-step "clang++ Release, -Werror, tests"
+step "clang++ Release, -Werror, tests and the libFuzzer targets (label fuzz: 30 s each)"
 configure_and_test clang -DCMAKE_CXX_COMPILER=clang++ -DXENO_BUILD_BENCH=OFF -DXENO_BUILD_EXAMPLES=OFF \
-  -DXENO_BUILD_HEADER_CHECK=ON
+  -DXENO_BUILD_HEADER_CHECK=ON -DXENO_BUILD_FUZZ=ON
+
+step "g++ and clang++ step every scene to the same state hashes"
+"$build/gcc/tests/xeno_determinism" >"$build/gcc/determinism.txt"
+"$build/clang/tests/xeno_determinism" >"$build/clang/determinism.txt"
+if ! diff "$build/gcc/determinism.txt" "$build/clang/determinism.txt"; then
+  echo "g++ and clang++ builds differ (docs/robustness.md, \"Determinism\")" >&2
+  exit 1
+fi
 
 step "g++ with AddressSanitizer and UndefinedBehaviorSanitizer, tests"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

@@ -58,9 +58,14 @@ Scene contact_kind(World<T>& world, ContactKind kind) {
         case ContactKind::edge_face: q = detail::edge_down<T>(Vec3<T>::unit_x()); reach = edge; break;
         case ContactKind::face_face: break;
     }
-    // A small offset so the cube does not balance forever on a tip, and a tilt for the face case.
-    const Vec3<T> offset = kind == ContactKind::face_face ? Vec3<T>{T(0.45), T(0), T(0.1)} : Vec3<T>{T(0.03), T(0), T(0.02)};
-    s.bodies.push_back(add_box(world, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), top + reach + T(0.3), T(0)} + offset, q));
+    // An offset (and for the tips a slight spin) so the cube does not balance for ever on a tip
+    // exactly above the pedestal's centre: it touches as the name says, then tumbles off.
+    const Vec3<T> offset = kind == ContactKind::face_face ? Vec3<T>{T(0.45), T(0), T(0.1)} : Vec3<T>{T(0.12), T(0), T(0.06)};
+    BodyDef<T> falling;
+    falling.position = Vec3<T>{T(0), top + reach + T(0.3), T(0)} + offset;
+    falling.orientation = q;
+    falling.angular_velocity = kind == ContactKind::face_face ? Vec3<T>{} : Vec3<T>{T(0.3), T(0), T(-0.4)};
+    s.bodies.push_back(world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), falling));
     s.eye = {3.5, 2.6, 4.5};
     s.target = {0, 1.2, 0};
     return s;

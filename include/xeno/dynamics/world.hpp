@@ -21,6 +21,7 @@
 #pragma once
 
 #include "../broadphase/brute_force.hpp"
+#include "../broadphase/aabb_tree.hpp"
 #include "../broadphase/sweep_and_prune.hpp"
 #include "../collide/collide.hpp"
 #include "../collide/raycast.hpp"
@@ -242,6 +243,7 @@ private:
     std::vector<Aabb<T>> bounds_;                 ///< per slot; empty for free slots
     std::vector<Transform<T>> previous_pose_;     ///< per slot: pose before the last step
     SweepAndPrune<T> sweep_;
+    AabbTree<T> tree_;
     std::vector<ProxyPair> pairs_;
     std::vector<Contact<T>> contacts_;            ///< sorted by (a.index, b.index)
     std::vector<SolverBody<T>> solver_bodies_;    ///< slot 0: static stand-in
@@ -623,8 +625,11 @@ void World<T>::step(T dt) {
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
         if (bodies_[i].alive_) previous_pose_[i] = bodies_[i].transform();
     update_bounds(dt);
-    if (settings_.broad_phase == BroadPhaseKind::brute_force) brute_force_pairs(bounds_, pairs_);
-    else sweep_.find_pairs(bounds_, pairs_);
+    switch (settings_.broad_phase) {
+        case BroadPhaseKind::brute_force: brute_force_pairs(bounds_, pairs_); break;
+        case BroadPhaseKind::sweep_and_prune: sweep_.find_pairs(bounds_, pairs_); break;
+        case BroadPhaseKind::aabb_tree: tree_.find_pairs(bounds_, pairs_); break;
+    }
     stats_.broad_pairs = pairs_.size();
     narrow_phase(dt);
     wake_touched_islands();

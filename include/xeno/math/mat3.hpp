@@ -8,6 +8,7 @@
 
 #include "vec3.hpp"
 
+#include <algorithm>
 #include <optional>
 
 namespace xeno {
@@ -74,17 +75,23 @@ constexpr T determinant(const Mat3<T>& m) {
 template <class T> constexpr T trace(const Mat3<T>& m) { return m[0].x + m[1].y + m[2].z; }
 
 /// The inverse, or nothing when |det| is below a relative threshold (a singular or nearly
-/// singular matrix is reported, never divided by zero).
+/// singular matrix is reported, never divided by zero). The matrix is scaled by its largest
+/// entry first, so large or tiny entries (an inertia of 1e15 kg·m² in float) neither overflow
+/// nor underflow the determinant.
 template <class T>
 std::optional<Mat3<T>> try_inverse(const Mat3<T>& m) {
+    T largest = T(0);
+    for (int i = 0; i < 3; ++i) largest = std::max(largest, max_component(abs(m[i])));
+    if (!(largest > T(0)) || !std::isfinite(largest)) return std::nullopt;
+    const Mat3<T> n = m * (T(1) / largest);
     // Columns of the adjugate's transpose are the cross products of the rows.
-    const Vec3<T> c0 = cross(m[1], m[2]);
-    const Vec3<T> c1 = cross(m[2], m[0]);
-    const Vec3<T> c2 = cross(m[0], m[1]);
-    const T det = dot(m[0], c0);
-    const T scale = length(m[0]) * length(m[1]) * length(m[2]);
+    const Vec3<T> c0 = cross(n[1], n[2]);
+    const Vec3<T> c1 = cross(n[2], n[0]);
+    const Vec3<T> c2 = cross(n[0], n[1]);
+    const T det = dot(n[0], c0);
+    const T scale = length(n[0]) * length(n[1]) * length(n[2]);
     if (!(std::abs(det) > ScalarTraits<T>::epsilon * scale) || !std::isfinite(det)) return std::nullopt;
-    return Mat3<T>::from_columns(c0, c1, c2) * (T(1) / det);
+    return Mat3<T>::from_columns(c0, c1, c2) * (T(1) / (det * largest));
 }
 
 /// u vᵀ.

@@ -1,0 +1,26 @@
+# SPDX-FileCopyrightText: 2026 The xeno authors
+# SPDX-License-Identifier: MIT
+#
+# Runs PROGRAM twice, as two processes, and fails unless both exit 0 with identical, non-empty
+# output: the cross-process half of the determinism test (docs/robustness.md, "Determinism").
+# Usage: cmake -DPROGRAM=<xeno_determinism> [-DWORK_DIR=<dir>] -P compare_runs.cmake
+if(NOT PROGRAM)
+  message(FATAL_ERROR "compare_runs.cmake: set -DPROGRAM=<executable>")
+endif()
+foreach(run 1 2)
+  execute_process(COMMAND ${PROGRAM} RESULT_VARIABLE code OUTPUT_VARIABLE out_${run} ERROR_VARIABLE err)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "run ${run} of ${PROGRAM} failed (${code}): ${err}")
+  endif()
+endforeach()
+if(out_1 STREQUAL "")
+  message(FATAL_ERROR "${PROGRAM} printed nothing")
+endif()
+if(NOT out_1 STREQUAL out_2)
+  if(WORK_DIR)
+    file(WRITE ${WORK_DIR}/determinism_run1.txt "${out_1}")
+    file(WRITE ${WORK_DIR}/determinism_run2.txt "${out_2}")
+  endif()
+  message(FATAL_ERROR "two processes gave different state hashes:\n--- run 1\n${out_1}--- run 2\n${out_2}")
+endif()
+message(STATUS "two processes agree:\n${out_1}")

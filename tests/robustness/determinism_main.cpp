@@ -1,0 +1,47 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// xeno_determinism: steps a fixed list of scenes a fixed number of steps in float and double and
+// prints one line per run, `scene precision final-hash` (hash of every body's state, see
+// state_hash.hpp). Two processes must print the same lines (CTest, compare_runs.cmake), and so
+// must a g++ build and a clang++ build (scripts/test.sh diffs them): docs/robustness.md,
+// "Determinism". Runs in about two seconds in a Release build.
+#include "robustness/state_hash.hpp"
+#include "scenes/all.hpp"
+
+#include <cinttypes>
+#include <cstdio>
+#include <string>
+
+namespace {
+
+struct Run {
+    const char* scene;
+    int steps;  // at the default 60 Hz
+};
+
+// Every kind of shape (mixed-pile), many impacts (rain), a tall stack (pyramid), a chain of
+// events (dominoes), lever and restitution (seesaw), a 400:1 mass ratio, a sloped contact.
+constexpr Run runs[] = {
+    {"mixed-pile", 300}, {"rain", 300},      {"pyramid", 120},        {"dominoes", 300},
+    {"seesaw", 180},     {"edge-edge", 120}, {"heavy-on-light", 120}, {"incline", 180},
+};
+
+template <class T>
+std::uint64_t final_hash(const char* scene, int steps) {
+    xeno::World<T> world;
+    xeno::scenes::build<T>(scene, world);
+    const T dt = world.settings().fixed_time_step;
+    for (int i = 0; i < steps; ++i) world.step(dt);
+    return xeno::test::state_hash(world);
+}
+
+}  // namespace
+
+int main() {
+    for (const Run& run : runs) {
+        std::printf("%s float %016" PRIx64 "\n", run.scene, final_hash<float>(run.scene, run.steps));
+        std::printf("%s double %016" PRIx64 "\n", run.scene, final_hash<double>(run.scene, run.steps));
+    }
+    return 0;
+}
