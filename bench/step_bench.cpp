@@ -81,18 +81,20 @@ WorldSettings<T> no_sleep() {
 
 /// N unit boxes in a loose grid 1.5 m apart, 2 … m above the ground, falling.
 template <class T>
-void drop_boxes(World<T>& world, int n) {
+std::vector<BodyId> drop_boxes(World<T>& world, int n) {
     scenes::add_ground(world, T(100));
     scenes::Random rng(3);
     const int side = static_cast<int>(std::ceil(std::sqrt(double(n) / 4)));
     const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
+    std::vector<BodyId> ids;
     for (int i = 0; i < n; ++i) {
         const int layer = i / (side * side), k = i % (side * side);
         BodyDef<T> def;
         def.position = {T(1.5) * T(k % side - side / 2), T(2) + T(1.5) * T(layer), T(1.5) * T(k / side - side / 2)};
         def.orientation = rng.rotation<T>();
-        world.create_body(box, def);
+        ids.push_back(world.create_body(box, def));
     }
+    return ids;
 }
 
 template <class T>
@@ -117,6 +119,29 @@ void drop_row(int n, int steps) {
     const Timing t = time_steps(world, steps);
     std::printf("drop-%-7d %6d boxes %-6s %8.2f ms/step %7.0f contacts %7.0f points | over %.1f s of falling and settling\n", n, n,
                 precision<T>(), t.ms_per_step, t.contacts_per_step, t.points_per_step, steps / 60.0);
+}
+
+/// Issue "game features": a settled pile of n boxes, asleep, against the same pile kept awake.
+/// The pile falls with sleeping on until every island sleeps; then 60 steps are timed asleep,
+/// and 60 more after every body was woken with sleeping off.
+template <class T>
+void sleep_row(int n) {
+    WorldSettings<T> settings;
+    World<T> world(settings);
+    const std::vector<BodyId> ids = drop_boxes(world, n);
+    int settle = 0;
+    for (; settle < 1800; ++settle) {
+        world.step(T(1) / T(60));
+        if (world.last_step_stats().awake_bodies == 0) break;
+    }
+    const std::size_t still_awake = world.last_step_stats().awake_bodies;
+    const Timing asleep = time_steps(world, 60);
+    settings.allow_sleeping = false;
+    world.set_settings(settings);
+    for (BodyId id : ids) world.body(id).wake();
+    const Timing awake = time_steps(world, 60);
+    std::printf("pile-%-7d %6d boxes %-6s asleep after %5.1f s: %7.3f ms/step asleep, %7.2f ms/step awake (%4.1f %%; goal < 10 %%), %zu never slept\n", n,
+                n, precision<T>(), settle / 60.0, asleep.ms_per_step, awake.ms_per_step, 100.0 * asleep.ms_per_step / awake.ms_per_step, still_awake);
 }
 
 template <class T>
@@ -192,6 +217,9 @@ int main(int argc, char** argv) {
         drop_row<float>(n, quick ? 60 : 300);
         drop_row<double>(n, quick ? 60 : 300);
     }
+    std::printf("\nSleeping: a dropped pile settles with sleeping on, then steps asleep and, woken, awake\n");
+    sleep_row<float>(quick ? 500 : 4000);
+    sleep_row<double>(quick ? 500 : 4000);
     std::printf("\nMemory (counting allocator, world.reserve() called; bodies share one shape). 'Between steps' is the\n"
                 "world's state; 'during a step' adds the solver's scratch (per awake body and per manifold).\n");
     std::printf("thesis (Quadro 25): 1,274 bytes/body, 380 bytes/touching pair\n");

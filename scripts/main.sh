@@ -1,11 +1,32 @@
 #!/usr/bin/env bash
-# The README's first command: set up, build the examples (Release) and run the main job.
+# The README's first command: set up, build the examples and benchmarks (Release), run the main job:
+#   1. the README's example (hello_world)
+#   2. every scenario rendered off-screen to out/<scenario>/frame_*.png (+ .gif/.mp4 via ffmpeg)
+#   3. the N² detection benchmark: the thesis's table beside xeno's strategies (+ out/n2.png)
+#   4. every scene in float and double side by side (out/precision/)
+# Takes about 5 minutes on a 2-core machine, most of it compiling and rendering.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh main
 build=${XENO_BUILD_DIR:-build}/main
+out=${XENO_OUT_DIR:-out}
+step() { printf '\n=== %s\n' "$*"; }
+
+step "build (Release, examples and benchmarks)"
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DXENO_BUILD_TESTS=OFF >/dev/null
-cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)"
+cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" \
+  --target hello_world xeno_render xeno_n2_bench xeno_precision
+
+step "the README's example"
 "$build/examples/hello_world"
-# Every scene in float and double side by side (~5 s): a table here, CSVs and PNGs in out/precision/.
-"$build/examples/xeno_precision" --out out
+
+step "every scenario to PNG frames in $out/"
+"$build/examples/xeno_render" --out "$out" all
+
+step "N² detection: one pass of broad + narrow phase against the thesis's Quadro 26"
+"$build/bench/xeno_n2_bench" --out "$out"
+
+step "float against double, every scene"
+"$build/examples/xeno_precision" --out "$out"
+
+step "done: frames in $out/<scenario>/, N² table in $out/n2.csv and $out/n2.png, precision in $out/precision/"

@@ -51,7 +51,9 @@ step "g++ with AddressSanitizer and UndefinedBehaviorSanitizer, tests"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 configure_and_test asan -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DXENO_BUILD_BENCH=OFF -DXENO_BUILD_EXAMPLES=OFF -DXENO_BUILD_HEADER_CHECK=OFF -DXENO_SANITIZE=ON \
-  "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+  "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -Wno-maybe-uninitialized"
+# (-Wno-maybe-uninitialized: with sanitizers g++ 12 reports false positives inside std::variant's
+# move of a ConvexPolyhedron; the warning stays on, as an error, in the other builds.)
 
 step "consumer projects compile the README's example"
 tests/consumers/run.sh "$build/consumers"

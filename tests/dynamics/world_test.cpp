@@ -192,3 +192,40 @@ TEST_CASE_TEMPLATE("a resting island sleeps, and wakes when touched or pushed", 
     test::simulate(w, T(3));
     CHECK(w.body(box).awake());
 }
+
+TEST_CASE_TEMPLATE("a sleeping stack wakes when the body under it is destroyed or starts to move", T, float, double) {
+    World<T> w;  // sleeping on
+    scenes::add_ground(w);
+    BodyDef<T> platform_def;
+    platform_def.type = BodyType::kinematic;
+    platform_def.position = {T(0), T(0.25), T(0)};
+    const BodyId platform = w.create_body(Box<T>(T(2), T(0.25), T(2)), platform_def);
+    const BodyId lower = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(1), T(0)});
+    const BodyId upper = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(2), T(0)});
+    test::simulate(w, T(2));
+    REQUIRE_FALSE(w.body(upper).awake());
+    REQUIRE_FALSE(w.body(lower).awake());
+    // Asleep, the island costs nothing: only the kinematic platform is a solver body, and the
+    // sleepers are not integrated.
+    CHECK(w.last_step_stats().awake_bodies == 1);
+    const Vec3<T> rest = w.body(upper).position();
+    test::simulate(w, T(1));
+    CHECK(w.body(upper).position() == rest);  // bitwise: not integrated
+
+    // The kinematic platform starts to slide: the stack on it wakes and rides along.
+    w.body(platform).set_linear_velocity(Vec3<T>{T(0.5), T(0), T(0)});
+    test::simulate(w, T(0.5));
+    CHECK(w.body(lower).awake());
+    CHECK(w.body(upper).awake());
+    CHECK(w.body(upper).position().x > rest.x + T(0.1));
+    w.body(platform).set_linear_velocity(Vec3<T>{});
+    test::simulate(w, T(3));
+    REQUIRE_FALSE(w.body(upper).awake());
+
+    // The lower box is destroyed: the upper one wakes and falls onto the platform.
+    const T top_before = w.body(upper).position().y;
+    w.destroy_body(lower);
+    CHECK(w.body(upper).awake());
+    test::simulate(w, T(2));
+    CHECK(w.body(upper).position().y < top_before - T(0.9));
+}
