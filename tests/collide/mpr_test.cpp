@@ -289,8 +289,9 @@ TEST_CASE_TEMPLATE("swapping A and B flips the normal and keeps the depth", T, f
                     ++hits;
                     // MPR's direction depends on the centres only, so the answers mirror exactly
                     // up to the refinement tolerance: on curved surfaces a converged portal of
-                    // size s tilts by about s/R, and s is about sqrt(8 R tau), tau ~ 1e-5 L in float.
-                    CHECK(near(ab.depth, ba.depth, std::is_same_v<T, float> ? T(1e-2) : T(2e-4)));
+                    // size s tilts by about s/R, and s is about sqrt(8 R tau), tau ~ 1e-5 L in float
+                    // and 1e-7 L in double (measured: up to 4.5e-4 on cone and cylinder rims).
+                    CHECK(near(ab.depth, ba.depth, std::is_same_v<T, float> ? T(1e-2) : T(1e-3)));
                     CHECK(dot(ab.normal, ba.normal) < T(-0.99));
                 }
                 if (ab.hit) {
@@ -427,4 +428,45 @@ TEST_CASE_TEMPLATE("a non-finite pose is rejected before the query runs", T, flo
     CHECK_THROWS_AS(mpr_penetration(cube, at(nan, T(0), T(0)), cube, at(T(0), T(0), T(0))), InvalidArgument);
     CHECK_THROWS_AS(mpr_intersect(cube, at(T(0), T(0), T(0)), cube, Transform<T>{Vec3<T>::zero(), Quat<T>{T(0), T(0), T(0), T(0)}}), InvalidArgument);
     CHECK_THROWS_AS(mpr_intersect(cube, at(T(0), std::numeric_limits<T>::infinity(), T(0)), cube, at(T(0), T(0), T(0))), InvalidArgument);
+}
+
+TEST_CASE("regression: two resting spheres whose portal degenerates get the shallow depth, not a stale portal's") {
+    // Found in the rain scene: the portal shrank towards a point on the curved surface, collapsed
+    // to a sliver after 40 iterations, flipped past the origin at 60, and the query reported the
+    // last portal's normal with a depth of 0.2536 m; the true overlap is 4·10⁻⁵ m.
+    using T = double;
+    const Sphere<T> ball(0.3);
+    const Transform<T> pa{{-0.79911925462260336, 0.29995326396800781, -2.0110214163734006},
+                          Quat<T>{0.3776798733578402, 0.37120884115406177, -0.2696226366160645, 0.80427951816123355}};
+    const Transform<T> pb{{-0.67396546879592756, 0.54329216810082415, -1.4770932947606803},
+                          Quat<T>{0.82962628998566157, -0.34774761053244541, -0.18710513409290166, 0.39469416911031163}};
+    const T margin = 0.02000001670199408;
+    const Penetration<T> p = detail::mpr(MinkowskiDifference<Sphere<T>, Sphere<T>>(ball, pa, ball, pb, margin), false);
+    const T exact = T(0.6) + margin - length(pb.position - pa.position);
+    REQUIRE(p.hit);
+    CHECK(near(p.depth, exact, T(1e-6)));
+    CHECK(near(pa.apply_direction(p.normal), normalized(pb.position - pa.position), T(1e-3)));
+}
+
+TEST_CASE_TEMPLATE("spheres near touching, with speculative margins, always get the closed-form depth", T, float, double) {
+    // Curved pairs are where MPR's portal shrinks towards a point and round-off can derail it:
+    // before the best portal was kept, 0.5 % of these queries in double were wrong, some by the
+    // whole size. Radii within 4:1, so the interior point stays on the centre line and MPR's
+    // direction is the exact one.
+    scenes::Random rng(77);
+    const T tol = std::is_same_v<T, float> ? T(2e-4) : T(1e-5);
+    for (int k = 0; k < 20000; ++k) {
+        const Sphere<T> a(rng.uniform(T(0.3), T(1))), b(rng.uniform(T(0.3), T(1)));
+        const T margin = rng.uniform(T(0), T(0.05));
+        const T gap = rng.uniform(T(-0.02), T(0.02));
+        const Vec3<T> dir = rng.direction<T>();
+        const Transform<T> pa{rng.in_box(Vec3<T>{T(5), T(5), T(5)}), rng.rotation<T>()};
+        const Transform<T> pb{pa.position + dir * (a.radius() + b.radius() + gap), rng.rotation<T>()};
+        const Penetration<T> p = detail::mpr(MinkowskiDifference<Sphere<T>, Sphere<T>>(a, pa, b, pb, margin), false);
+        const T exact = a.radius() + b.radius() + margin - length(pb.position - pa.position);
+        if (exact < tol) continue;
+        CAPTURE(k);
+        REQUIRE(p.hit);
+        CHECK(near(p.depth, exact, tol));
+    }
 }
