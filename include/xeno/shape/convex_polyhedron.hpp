@@ -172,10 +172,13 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
         const std::vector<std::uint32_t>& face = faces[f];
         const std::string face_name = "face " + std::to_string(f);
         if (face.size() < 3) detail::report_invalid(where, (face_name + " needs 3 or more vertices, count").c_str(), static_cast<double>(face.size()));
+        // Every index checked before any is used: each edge reads the next vertex too (an
+        // out-of-range last index was read before it was checked; found by AddressSanitizer).
+        for (std::uint32_t index : face)
+            if (index >= n) detail::report_invalid(where, (face_name + " has a vertex index out of range").c_str(), static_cast<double>(index));
         Vec3<T> newell = Vec3<T>::zero(), centre = Vec3<T>::zero();
         T longest_edge = T(0);
         for (std::size_t k = 0; k < face.size(); ++k) {
-            if (face[k] >= n) detail::report_invalid(where, (face_name + " has a vertex index out of range").c_str(), static_cast<double>(face[k]));
             const Vec3<T>& p = vertices_[face[k]];
             const Vec3<T>& q = vertices_[face[(k + 1) % face.size()]];
             newell += cross(p, q);
