@@ -33,6 +33,7 @@
 
 #include <algorithm>
 #include <array>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <numeric>
@@ -126,7 +127,10 @@ public:
     bool contains(BodyId id) const {
         return id.index < bodies_.size() && bodies_[id.index].alive_ && bodies_[id.index].generation_ == id.generation;
     }
-    /// The body of a handle; a stale or invalid handle is reported (InvalidArgument).
+    /// The body of a handle; a stale or invalid handle is reported (InvalidArgument). The
+    /// reference stays valid while the body lives, whatever else is created or destroyed
+    /// (bodies are kept in stable storage); it ends with destroy_body(id), restore_snapshot and
+    /// the world itself.
     Body<T>& body(BodyId id) { return bodies_[checked(id, "World::body")]; }
     const Body<T>& body(BodyId id) const { return bodies_[checked(id, "World::body")]; }
     /// Moves a body (teleport), waking it and the bodies it touched.
@@ -226,7 +230,8 @@ private:
     }
     void update_bounds(T dt);
     void narrow_phase(T dt);
-    void wake_touched_islands();
+    void wake_touched_islands(T dt);
+    bool closes_within_step(const Contact<T>& c, T dt) const;
     void prepare(T dt);
     void solve(T dt);
     void finish();
@@ -238,7 +243,7 @@ private:
     }
 
     WorldSettings<T> settings_;
-    std::vector<Body<T>> bodies_;
+    std::deque<Body<T>> bodies_;                  ///< a deque: references stay valid as it grows
     std::vector<std::uint32_t> free_slots_;
     std::vector<Aabb<T>> bounds_;                 ///< per slot; empty for free slots
     std::vector<Transform<T>> previous_pose_;     ///< per slot: pose before the last step
@@ -259,6 +264,12 @@ private:
     std::function<void(World&, const ContactEvent<T>&)> listener_;
     std::function<bool(BodyId, BodyId)> filter_;
     T accumulator_{};
+    // Scratch kept between steps so a settled step allocates nothing.
+    std::vector<Contact<T>> next_contacts_;       ///< narrow phase output, swapped with contacts_
+    std::vector<std::uint32_t> island_parent_;    ///< union–find parents per slot (wake, sleep)
+    std::vector<std::uint8_t> island_flag_;       ///< per island root: wake it
+    std::vector<T> island_sleep_time_;            ///< per island root: the least sleep clock
+    std::vector<ContactEvent<T>> delivered_events_;  ///< the listener's copy of events_
 };
 
 template <class T>
@@ -486,7 +497,6 @@ void World<T>::prepare_joints(T h) {
 
 template <class T>
 void World<T>::reserve(std::size_t bodies, std::size_t contacts) {
-    bodies_.reserve(bodies);
     bounds_.reserve(bodies);
     previous_pose_.reserve(bodies);
     solver_index_.reserve(bodies);
@@ -632,7 +642,7 @@ void World<T>::step(T dt) {
     }
     stats_.broad_pairs = pairs_.size();
     narrow_phase(dt);
-    wake_touched_islands();
+    wake_touched_islands(dt);
     prepare(dt);
     solve(dt);
     finish();
@@ -646,6 +656,9 @@ void World<T>::report_events() {
     events_pending_.clear();
     for (const Contact<T>& c : contacts_) {
         if (!c.touching && !c.was_touching) continue;
+        // A pair with no active body (both asleep, or asleep on a static body) is not
+        // re-collided: its contact is unchanged, so "persisted" is not repeated every step.
+        if (c.touching && c.was_touching && !active(bodies_[c.a.index]) && !active(bodies_[c.b.index])) continue;
         ContactEvent<T> e;
         e.kind = !c.touching ? ContactEventKind::ended : (c.was_touching ? ContactEventKind::persisted : ContactEventKind::began);
         e.a = c.a;
@@ -668,8 +681,10 @@ void World<T>::report_events() {
         return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
     });
     if (listener_) {
-        const std::vector<ContactEvent<T>> delivered = events_;  // the listener may change the world
-        for (const ContactEvent<T>& e : delivered) listener_(*this, e);
+        // The listener may change the world (and so events_): it is handed a copy kept between
+        // steps. A listener that steps the world from inside is not supported.
+        delivered_events_ = events_;
+        for (const ContactEvent<T>& e : delivered_events_) listener_(*this, e);
     }
 }
 
@@ -689,8 +704,8 @@ void World<T>::update_bounds(T dt) {
 
 template <class T>
 void World<T>::narrow_phase(T dt) {
-    std::vector<Contact<T>> next;
-    next.reserve(contacts_.size() + pairs_.size() / 4);
+    std::vector<Contact<T>>& next = next_contacts_;
+    next.clear();
     std::size_t old = 0;
     for (const ProxyPair& pair : pairs_) {
         // Merge-join with last step's contacts (both sorted by body pair, then by parts): those
@@ -771,35 +786,75 @@ void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_beg
 }
 
 template <class T>
-void World<T>::wake_touched_islands() {
-    // A sleeping body touched by an awake moving one wakes; waking spreads through touching
-    // contacts until it stops changing (the island wakes as a whole).
-    bool changed = true;
-    while (changed) {
-        changed = false;
-        for (const Joint<T>& j : joints_) {
-            if (!j.alive) continue;
-            Body<T>& a = bodies_[j.a.index];
-            Body<T>& b = bodies_[j.b.index];
-            if (a.awake_ != b.awake_ && (active(a) || active(b))) {
-                if (a.type_ == BodyType::dynamic && !a.awake_) a.wake(), changed = true;
-                if (b.type_ == BodyType::dynamic && !b.awake_) b.wake(), changed = true;
-            }
-        }
-        for (const Contact<T>& c : contacts_) {
-            if (!c.touching) continue;  // speculative contacts do not wake: the sleeper acts as static until touched
-            Body<T>& a = bodies_[c.a.index];
-            Body<T>& b = bodies_[c.b.index];
-            if (active(a) && !b.awake_ && b.type_ == BodyType::dynamic) {
-                b.wake();
-                changed = true;
-            }
-            if (active(b) && !a.awake_ && a.type_ == BodyType::dynamic) {
-                a.wake();
-                changed = true;
-            }
-        }
+bool World<T>::closes_within_step(const Contact<T>& c, T dt) const {
+    // A point closes when its gap is within what the bodies' relative velocity (and the
+    // acceleration of gravity and forces over the step) can cover in dt, or within the slop.
+    // Conservative on purpose: a wrong "yes" only wakes an island early; a wrong "no" would let
+    // the solver treat the sleeper as a wall and swallow the impact (issue 12).
+    const Body<T>& a = bodies_[c.a.index];
+    const Body<T>& b = bodies_[c.b.index];
+    auto acceleration = [&](const Body<T>& x) {
+        if (x.type_ != BodyType::dynamic || !x.awake_) return Vec3<T>::zero();
+        return settings_.gravity * x.gravity_scale_ + x.force_ * x.inverse_mass_;
+    };
+    const Vec3<T> relative_acceleration = acceleration(b) - acceleration(a);
+    for (int i = 0; i < c.manifold.count; ++i) {
+        const ContactPoint<T>& cp = c.manifold.points[static_cast<std::size_t>(i)];
+        const Vec3<T> pa = a.world_point(cp.local_a), pb = b.world_point(cp.local_b);
+        const Vec3<T> mid = (pa + pb) * T(0.5);
+        const Vec3<T> va = a.linear_velocity_ + cross(a.angular_velocity_, mid - a.position_);
+        const Vec3<T> vb = b.linear_velocity_ + cross(b.angular_velocity_, mid - b.position_);
+        const T gap = dot(pb - pa, c.manifold.normal);
+        const T approach = -dot(vb - va, c.manifold.normal) * dt - dot(relative_acceleration, c.manifold.normal) * dt * dt;
+        if (gap <= std::max(approach, T(0)) + settings_.linear_slop) return true;
     }
+    return false;
+}
+
+template <class T>
+void World<T>::wake_touched_islands(T dt) {
+    // Islands of dynamic bodies joined by touching contacts and joints (union–find, linear in
+    // bodies and contacts). A sleeping island wakes as a whole, before the solver runs, when an
+    // active body touches one of its bodies, has a contact with it that can close within this
+    // step (speculative points count) or is jointed to it: an awake body is never solved against
+    // a sleeping one, which would act as an immovable wall and eat the impact.
+    std::vector<std::uint32_t>& parent = island_parent_;
+    parent.resize(bodies_.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto find = [&](std::uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    auto dynamic = [&](std::uint32_t slot) { return bodies_[slot].type_ == BodyType::dynamic; };
+    auto sleeping = [&](std::uint32_t slot) { return dynamic(slot) && !bodies_[slot].awake_; };
+    for (const Contact<T>& c : contacts_)
+        if (c.touching && !c.sensor && dynamic(c.a.index) && dynamic(c.b.index)) parent[find(c.a.index)] = find(c.b.index);
+    for (const Joint<T>& j : joints_)
+        if (j.alive && dynamic(j.a.index) && dynamic(j.b.index)) parent[find(j.a.index)] = find(j.b.index);
+
+    std::vector<std::uint8_t>& wake = island_flag_;
+    wake.assign(bodies_.size(), 0);
+    bool any = false;
+    auto reach = [&](std::uint32_t from, std::uint32_t to) {
+        if (active(bodies_[from]) && sleeping(to)) wake[find(to)] = 1, any = true;
+    };
+    for (const Contact<T>& c : contacts_) {
+        if (c.sensor || c.manifold.count == 0) continue;  // sensors never push
+        const bool a_to_b = active(bodies_[c.a.index]) && sleeping(c.b.index);
+        const bool b_to_a = active(bodies_[c.b.index]) && sleeping(c.a.index);
+        if (!a_to_b && !b_to_a) continue;
+        if (!c.touching && !closes_within_step(c, dt)) continue;
+        reach(c.a.index, c.b.index);
+        reach(c.b.index, c.a.index);
+    }
+    for (const Joint<T>& j : joints_) {
+        if (!j.alive) continue;
+        reach(j.a.index, j.b.index);
+        reach(j.b.index, j.a.index);
+    }
+    if (!any) return;
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i)
+        if (bodies_[i].alive_ && sleeping(i) && wake[find(i)]) bodies_[i].wake();
 }
 
 template <class T>
@@ -840,6 +895,9 @@ void World<T>::prepare(T dt) {
         c.a = solver_index_[contact.a.index];
         c.b = solver_index_[contact.b.index];
         if (c.a == 0 && c.b == 0) continue;  // both asleep or static
+        // A sleeper left asleep by wake_touched_islands cannot be reached this step; solving
+        // against it as a static stand-in would stop the mover dead (issue 12), so skip the row.
+        if ((c.a == 0 && a.type_ == BodyType::dynamic) || (c.b == 0 && b.type_ == BodyType::dynamic)) continue;
         const SolverBody<T>& sa = solver_bodies_[c.a];
         const SolverBody<T>& sb = solver_bodies_[c.b];
         c.manifold = m;
@@ -986,7 +1044,8 @@ template <class T>
 void World<T>::update_sleep(T dt) {
     if (!settings_.allow_sleeping) return;
     // Islands: dynamic bodies joined by touching contacts (union–find with path halving).
-    std::vector<std::uint32_t> parent(bodies_.size());
+    std::vector<std::uint32_t>& parent = island_parent_;
+    parent.resize(bodies_.size());
     std::iota(parent.begin(), parent.end(), 0u);
     auto find = [&](std::uint32_t x) {
         while (parent[x] != x) x = parent[x] = parent[parent[x]];
@@ -1006,7 +1065,8 @@ void World<T>::update_sleep(T dt) {
     // sleep_time and none refuses to sleep or touches a moving kinematic body.
     const T lin_sq = settings_.sleep_linear_speed * settings_.sleep_linear_speed;
     const T ang_sq = settings_.sleep_angular_speed * settings_.sleep_angular_speed;
-    std::vector<T> island_min(bodies_.size(), ScalarTraits<T>::infinity);
+    std::vector<T>& island_min = island_sleep_time_;
+    island_min.assign(bodies_.size(), ScalarTraits<T>::infinity);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         Body<T>& b = bodies_[i];
         if (!b.alive_ || b.type_ != BodyType::dynamic || !b.awake_) continue;

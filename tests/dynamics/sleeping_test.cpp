@@ -1,0 +1,224 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Sleeping in the default settings must not change the physics: a body that hits a sleeping
+// island gives it the same momentum as when nothing sleeps (issue 12: the sleeper used to be
+// solved as a static stand-in for one step, so the mover stopped dead). Each case runs the same
+// scene with sleeping on (the default) and off and compares, and checks the sleeping-on run
+// really had its target asleep before the hit.
+#include "support/approx.hpp"
+#include "support/sim.hpp"
+
+#include <algorithm>
+
+using namespace xeno;
+
+namespace {
+
+template <class T>
+WorldSettings<T> with_sleeping(bool on) {
+    WorldSettings<T> s;  // the defaults a user gets
+    s.allow_sleeping = on;
+    return s;
+}
+
+template <class T>
+BodyId add_floor(World<T>& w) {
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    d.position = {T(0), T(-0.5), T(0)};
+    return w.create_body(Box<T>(T(40), T(0.5), T(40)), d);
+}
+
+struct ShotResult {
+    double box_moved = 0;        // m along x after the shot
+    double peak_momentum = 0;    // kg·m/s, the box's largest x momentum
+    bool asleep_before = false;  // the box slept when the sphere was fired
+};
+
+// A 0.25 m sphere at 5 m/s (no gravity) fired along the floor at a resting 100 kg unit box.
+template <class T>
+ShotResult shoot_resting_box(bool sleeping, T box_mass, T sphere_mass) {
+    World<T> w(with_sleeping<T>(sleeping));
+    add_floor(w);
+    BodyDef<T> bd;
+    bd.position = {T(0), T(0.5), T(0)};
+    bd.mass = box_mass;
+    const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), bd);
+    test::simulate(w, T(1));
+    ShotResult r;
+    r.asleep_before = !w.body(box).awake();
+    BodyDef<T> sd;
+    sd.position = {T(-3), T(0.3), T(0)};
+    sd.linear_velocity = {T(5), T(0), T(0)};
+    sd.gravity_scale = T(0);
+    sd.mass = sphere_mass;
+    w.create_body(Sphere<T>(T(0.25)), sd);
+    const T x0 = w.body(box).position().x;
+    test::simulate(w, T(2), [&](int) {
+        r.peak_momentum = std::max(r.peak_momentum, double(box_mass * w.body(box).linear_velocity().x));
+    });
+    r.box_moved = double(w.body(box).position().x - x0);
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a sphere fired at a sleeping box passes the momentum it passes to an awake one", T, float, double) {
+    const T box_mass = T(100), sphere_mass = T(65);
+    const ShotResult on = shoot_resting_box<T>(true, box_mass, sphere_mass);
+    const ShotResult off = shoot_resting_box<T>(false, box_mass, sphere_mass);
+    CHECK(on.asleep_before);
+    CHECK_FALSE(off.asleep_before);
+    // Closed form of the exchange: the box's momentum lies between the perfectly inelastic
+    // (m M / (m + M) v) and the elastic (twice that) impulse; the floor's friction takes a little
+    // during the short impact.
+    const double v = 5, reduced = double(sphere_mass) * double(box_mass) / double(sphere_mass + box_mass);
+    for (const ShotResult* r : {&on, &off}) {
+        CHECK(r->peak_momentum >= 0.9 * reduced * v);
+        CHECK(r->peak_momentum <= 2.0 * reduced * v * 1.01);
+        CHECK(r->box_moved > 0.2);
+    }
+    CHECK(std::abs(on.peak_momentum - off.peak_momentum) <= 0.05 * off.peak_momentum);
+    CHECK(std::abs(on.box_moved - off.box_moved) <= 0.05 * off.box_moved);
+}
+
+namespace {
+
+// A settled column of ten unit boxes, then a heavy ball at 20 m/s into its second box from the
+// top (lower ones are held by the friction of the weight above them). Returns
+// the step (after the shot) at which the top box has dropped 0.5 m: the stack fell.
+template <class T>
+int shot_stack_falls_at(bool sleeping, bool& asleep_before) {
+    World<T> w(with_sleeping<T>(sleeping));
+    add_floor(w);
+    std::vector<BodyId> boxes;
+    for (int i = 0; i < 10; ++i) {
+        BodyDef<T> d;
+        d.position = {T(0), T(0.5) + T(i), T(0)};
+        boxes.push_back(w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d));
+    }
+    test::simulate(w, T(3));
+    asleep_before = std::none_of(boxes.begin(), boxes.end(), [&](BodyId id) { return w.body(id).awake(); });
+    const T top0 = w.body(boxes.back()).position().y;
+    BodyDef<T> ball;
+    ball.position = {T(-4), T(8.5), T(0)};
+    ball.linear_velocity = {T(20), T(0), T(0)};
+    ball.gravity_scale = T(0);
+    ball.mass = T(510);
+    w.create_body(Sphere<T>(T(0.5)), ball);
+    for (int step = 0; step < 600; ++step) {
+        w.step(w.settings().fixed_time_step);
+        if (w.body(boxes.back()).position().y < top0 - T(0.5)) return step;
+    }
+    return -1;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a ball shot into a sleeping stack brings it down when it would awake", T, float, double) {
+    bool asleep_on = false, asleep_off = true;
+    const int on = shot_stack_falls_at<T>(true, asleep_on);
+    const int off = shot_stack_falls_at<T>(false, asleep_off);
+    CHECK(asleep_on);
+    CHECK_FALSE(asleep_off);
+    REQUIRE(off >= 0);
+    CHECK(on >= 0);
+    CHECK(std::abs(on - off) <= 2);
+}
+
+namespace {
+
+// Two boxes side by side with a third on top (asleep when sleeping is on); a heavy box thrown
+// sideways at the top one. Returns how far the top box was pushed along x.
+template <class T>
+T push_sleeping_pile(bool sleeping, bool& asleep_before) {
+    World<T> w(with_sleeping<T>(sleeping));
+    add_floor(w);
+    const Box<T> cube(T(0.5), T(0.5), T(0.5));
+    BodyDef<T> d;
+    std::vector<BodyId> pile;
+    for (const Vec3<T>& p : {Vec3<T>{T(-0.55), T(0.5), T(0)}, Vec3<T>{T(0.55), T(0.5), T(0)}, Vec3<T>{T(0), T(1.5), T(0)}}) {
+        d.position = p;
+        pile.push_back(w.create_body(cube, d));
+    }
+    test::simulate(w, T(2));
+    asleep_before = std::none_of(pile.begin(), pile.end(), [&](BodyId id) { return w.body(id).awake(); });
+    const Vec3<T> top0 = w.body(pile[2]).position();
+    BodyDef<T> drop;
+    drop.position = {T(-2), T(1.8), T(0)};
+    drop.linear_velocity = {T(6), T(0), T(0)};
+    drop.density = T(3000);
+    w.create_body(Box<T>(T(0.3), T(0.3), T(0.3)), drop);
+    test::simulate(w, T(1));
+    return w.body(pile[2]).position().x - top0.x;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a box thrown at a sleeping pile moves it as it moves an awake pile", T, float, double) {
+    bool asleep_on = false, asleep_off = true;
+    const T on = push_sleeping_pile<T>(true, asleep_on);
+    const T off = push_sleeping_pile<T>(false, asleep_off);
+    CHECK(asleep_on);
+    CHECK_FALSE(asleep_off);
+    CHECK(off > T(0.05));
+    CHECK(std::abs(on - off) <= T(0.1) * off + T(0.01));
+}
+
+TEST_CASE_TEMPLATE("pairs that sleep report no persisted events", T, float, double) {
+    World<T> w;  // defaults: sleeping on
+    add_floor(w);
+    BodyDef<T> d;
+    d.position = {T(0), T(0.5), T(0)};
+    const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    int persisted_while_asleep = 0, began = 0;
+    bool slept = false;
+    test::simulate(w, T(3), [&](int) {
+        for (const ContactEvent<T>& e : w.contact_events()) {
+            began += e.kind == ContactEventKind::began;
+            if (e.kind == ContactEventKind::persisted && !w.body(box).awake()) ++persisted_while_asleep;
+        }
+        slept = slept || !w.body(box).awake();
+    });
+    CHECK(slept);
+    CHECK(began == 1);
+    CHECK(persisted_while_asleep == 0);
+    // Waking it (a push) resumes the events of the still-touching pair as "persisted".
+    w.body(box).apply_linear_impulse(Vec3<T>{T(50), T(0), T(0)});
+    w.step(w.settings().fixed_time_step);
+    bool persisted = false;
+    for (const ContactEvent<T>& e : w.contact_events()) persisted = persisted || e.kind == ContactEventKind::persisted;
+    CHECK(persisted);
+}
+
+TEST_CASE_TEMPLATE("a body reference stays valid while bodies are created, also from a listener", T, float, double) {
+    World<T> w;
+    add_floor(w);
+    BodyDef<T> d;
+    d.position = {T(0), T(0.5), T(0)};
+    const BodyId first = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    const Body<T>& kept = w.body(first);
+    for (int i = 0; i < 1000; ++i) {  // grows the storage many times over
+        d.position = {T(3) * T(i % 30), T(5) + T(i / 30), T(10)};
+        w.create_body(Sphere<T>(T(0.4)), d);
+    }
+    CHECK(&kept == &w.body(first));
+    CHECK(kept.position().y == w.body(first).position().y);
+    // A listener holding a reference while it creates bodies.
+    const Body<T>* seen = nullptr;
+    bool same = true;
+    w.set_contact_listener([&](World<T>& world, const ContactEvent<T>& e) {
+        if (!world.contains(e.a) || !world.contains(e.b)) return;
+        const Body<T>& held = world.body(e.b);
+        const Vec3<T> before = held.position();
+        BodyDef<T> extra;
+        extra.position = {T(-50), T(50) + T(world.body_count()), T(-50)};
+        world.create_body(Sphere<T>(T(0.1)), extra);
+        same = same && (&held == &world.body(e.b)) && held.position() == before;
+        seen = &held;
+    });
+    test::simulate(w, T(0.1));
+    CHECK(seen != nullptr);
+    CHECK(same);
+}
