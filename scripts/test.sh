@@ -2,8 +2,10 @@
 # The README's second command: set up, then build and run everything xeno tests.
 #   1. g++ Release, warnings as errors: every public header compiled alone, tests (unit + slow),
 #      benchmarks and examples built
-#   2. clang++ Release, warnings as errors: the tests again
-#   3. g++ with -fsanitize=address,undefined -fno-sanitize-recover=all: the tests again
+#   2. clang++ Release, warnings as errors: every header alone, the unit tests (the slow ones run
+#      in steps 1 and 3), the libFuzzer targets
+#   3. g++ with -fsanitize=address,undefined -fno-sanitize-recover=all (-O1, line tables): the
+#      unit and slow tests again
 #   4. the README's example compiled by three consumer projects: plain -I include,
 #      add_subdirectory(xeno) and find_package(xeno CONFIG REQUIRED) after cmake --install
 #   5. the libFuzzer targets for a bounded time (clang) and the g++/clang++ determinism hash
@@ -16,7 +18,14 @@ scripts/setup.sh test
 jobs=$(nproc 2>/dev/null || echo 2)
 build=${XENO_BUILD_DIR:-$root/build}
 start=$(date +%s)
-step() { printf '\n=== %s (%ds elapsed)\n' "$*" $(( $(date +%s) - start )); }
+last=$start
+times=()
+step() {  # closes the previous step's timing and opens the next
+  local now; now=$(date +%s)
+  if [[ -n "${current:-}" ]]; then times+=("$(printf '%6d  %s' $((now - last)) "$current")"); fi
+  current=$*; last=$now
+  printf '\n=== %s (%ds elapsed)\n' "$*" $(( now - start ))
+}
 
 configure_and_test() {  # name, extra cmake args...
   local name=$1; shift
@@ -35,9 +44,9 @@ fi
 step "g++ Release, -Werror, all targets"
 configure_and_test gcc -DCMAKE_CXX_COMPILER=g++
 
-step "clang++ Release, -Werror, tests and the libFuzzer targets (label fuzz: 30 s each)"
-configure_and_test clang -DCMAKE_CXX_COMPILER=clang++ -DXENO_BUILD_BENCH=OFF -DXENO_BUILD_EXAMPLES=OFF \
-  -DXENO_BUILD_HEADER_CHECK=ON -DXENO_BUILD_FUZZ=ON
+step "clang++ Release, -Werror, headers, unit tests and the libFuzzer targets (label fuzz: 30 s each)"
+ctest_args="-LE slow" configure_and_test clang -DCMAKE_CXX_COMPILER=clang++ -DXENO_BUILD_BENCH=OFF -DXENO_BUILD_EXAMPLES=OFF \
+  -DXENO_BUILD_HEADER_CHECK=ON -DXENO_BUILD_FUZZ=ON -DXENO_BUILD_SLOW_TESTS=OFF
 
 step "g++ and clang++ step every scene to the same state hashes"
 "$build/gcc/tests/xeno_determinism" >"$build/gcc/determinism.txt"
@@ -49,7 +58,7 @@ fi
 
 step "g++ with AddressSanitizer and UndefinedBehaviorSanitizer, tests"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-configure_and_test asan -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+configure_and_test asan -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
   -DXENO_BUILD_BENCH=OFF -DXENO_BUILD_EXAMPLES=OFF -DXENO_BUILD_HEADER_CHECK=OFF -DXENO_SANITIZE=ON \
   "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -Wno-maybe-uninitialized"
 # (-Wno-maybe-uninitialized: with sanitizers g++ 12 reports false positives inside std::variant's
@@ -59,3 +68,6 @@ step "consumer projects compile the README's example"
 tests/consumers/run.sh "$build/consumers"
 
 step "all passed"
+printf '\nTime per step (s):\n'
+printf '%s\n' "${times[@]}"
+printf '%6d  total\n' $(( $(date +%s) - start ))

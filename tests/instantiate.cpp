@@ -26,5 +26,18 @@
     template class xeno::Body<T>;                                                                              \
     template class xeno::World<T>;
 
+// The narrow phase over the Shape variant: each of these visits the whole shape-pair matrix, the
+// heaviest code in xeno to compile; the collide tests see them as extern templates too.
+#define XENO_INSTANTIATE_NARROW_PHASE(T)                                                                                      \
+    template bool xeno::intersect<T>(const xeno::Shape<T>&, const xeno::Transform<T>&, const xeno::Shape<T>&,                 \
+                                     const xeno::Transform<T>&);                                                              \
+    template xeno::Penetration<T> xeno::collide<T>(const xeno::Shape<T>&, const xeno::Transform<T>&, const xeno::Shape<T>&,   \
+                                                   const xeno::Transform<T>&);                                                \
+    template xeno::ContactManifold<T> xeno::generate_contacts<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,            \
+                                                                 const xeno::Shape<T>&, const xeno::Transform<T>&, T);        \
+    template std::optional<xeno::RayHit<T>> xeno::raycast<T>(const xeno::Shape<T>&, const xeno::Transform<T>&, const xeno::Ray<T>&);
+
 XENO_INSTANTIATE(float)
 XENO_INSTANTIATE(double)
+XENO_INSTANTIATE_NARROW_PHASE(float)
+XENO_INSTANTIATE_NARROW_PHASE(double)

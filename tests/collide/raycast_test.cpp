@@ -117,8 +117,9 @@ TEST_CASE_TEMPLATE("random rays agree with the support function: the hit is on t
     CHECK(hits > 1500);
 }
 
-TEST_CASE_TEMPLATE("the world's ray casts find the nearest body and every body in order", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("the world's ray casts find the nearest body and every body in order", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const BodyId ground = scenes::add_ground(w);
     std::vector<BodyId> boxes;
     for (int i = 0; i < 4; ++i) boxes.push_back(scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(2) * T(i + 1), T(0.5), T(0)}));

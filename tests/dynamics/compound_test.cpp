@@ -26,8 +26,9 @@ TEST_CASE_TEMPLATE("two boxes side by side have the mass properties of one long 
     CHECK_THROWS_AS(Compound<T>(std::vector<CompoundChild<T>>{}), InvalidArgument);
 }
 
-TEST_CASE_TEMPLATE("stacks of L-shapes and tables stand for 10 s", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("stacks of L-shapes and tables stand for 10 s", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const scenes::Scene scene = scenes::compound_stack(w);
     test::simulate(w, T(1));
     std::vector<Vec3<T>> at_one;
@@ -46,8 +47,9 @@ TEST_CASE_TEMPLATE("stacks of L-shapes and tables stand for 10 s", T, float, dou
     CHECK(leg_contacts == 4);
 }
 
-TEST_CASE_TEMPLATE("ray casts and point queries see every part of a compound", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("ray casts and point queries see every part of a compound", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     BodyDef<T> d;
     d.type = BodyType::static_body;
     const auto t = scenes::table<T>();

@@ -9,9 +9,10 @@
 
 using namespace xeno;
 
-TEST_CASE_TEMPLATE("a small box fired at 300 m/s never passes through a thin wall", T, float, double) {
+TEST_CASE_TEMPLATE("a small box fired at 300 m/s never passes through a thin wall", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
     for (const T angle : {T(0), T(0.3), T(-0.7)}) {
-        World<T> w(test::awake_settings<T>());
+        World<T> w(C::settings());
         scenes::add_ground(w);
         BodyDef<T> wall;
         wall.type = BodyType::static_body;
@@ -33,8 +34,9 @@ TEST_CASE_TEMPLATE("a small box fired at 300 m/s never passes through a thin wal
     }
 }
 
-TEST_CASE_TEMPLATE("without the fast flag the speed cap applies", T, float, double) {
-    WorldSettings<T> s = test::awake_settings<T>();
+TEST_CASE_TEMPLATE("without the fast flag the speed cap applies", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    WorldSettings<T> s = C::settings();
     s.gravity = Vec3<T>::zero();
     s.max_linear_speed = T(100);
     World<T> w(s);

@@ -18,8 +18,9 @@ BodyId drop_box(World<T>& w, T height, std::uint32_t layer = 1, std::uint32_t ma
 }
 }  // namespace
 
-TEST_CASE_TEMPLATE("contact events begin once, persist while touching and end when apart", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("contact events begin once, persist while touching and end when apart", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const BodyId ground = scenes::add_ground(w);
     const BodyId box = drop_box(w, T(1.5));
     int began = 0, persisted = 0, ended = 0, began_step = -1;
@@ -61,8 +62,9 @@ TEST_CASE_TEMPLATE("contact events begin once, persist while touching and end wh
     CHECK(ended == 1);
 }
 
-TEST_CASE_TEMPLATE("a listener may destroy bodies while events are delivered", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("a listener may destroy bodies while events are delivered", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     scenes::add_ground(w);
     std::vector<BodyId> boxes;
     for (int i = 0; i < 5; ++i) {
@@ -83,8 +85,9 @@ TEST_CASE_TEMPLATE("a listener may destroy bodies while events are delivered", T
     CHECK(w.contacts().empty());
 }
 
-TEST_CASE_TEMPLATE("layers, masks and a filter callback keep pairs apart", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("layers, masks and a filter callback keep pairs apart", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     scenes::add_ground(w);
     // Layer 2 does not collide with layer 4: the upper box falls through the lower one.
     const BodyId lower = drop_box(w, T(0.5), 2u, ~4u);
@@ -100,8 +103,9 @@ TEST_CASE_TEMPLATE("layers, masks and a filter callback keep pairs apart", T, fl
     w.set_contact_filter({});
 }
 
-TEST_CASE_TEMPLATE("a sensor reports overlaps and never pushes", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("a sensor reports overlaps and never pushes", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     scenes::add_ground(w);
     BodyDef<T> s;
     s.type = BodyType::static_body;

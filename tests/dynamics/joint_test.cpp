@@ -21,8 +21,9 @@ BodyId anchor_body(World<T>& w, const Vec3<T>& at) {
 }
 }  // namespace
 
-TEST_CASE_TEMPLATE("a pendulum's small-angle period is 2 pi sqrt(L/g) within 1 %", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("a pendulum's small-angle period is 2 pi sqrt(L/g) within 1 %", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const T length_m = T(2), r = T(0.05), angle = radians(T(4));
     const Vec3<T> pivot{T(0), T(5), T(0)};
     const BodyId top = anchor_body(w, pivot);
@@ -53,8 +54,9 @@ TEST_CASE_TEMPLATE("a pendulum's small-angle period is 2 pi sqrt(L/g) within 1 %
     CHECK(amplitude > T(0.8) * length_m * std::sin(angle));
 }
 
-TEST_CASE_TEMPLATE("a 20-link chain released horizontally never stretches more than 1 %", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("a 20-link chain released horizontally never stretches more than 1 %", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const Vec3<T> pivot{T(0), T(12), T(0)};
     BodyId previous = anchor_body(w, pivot);
     const T link = T(0.5);
@@ -81,8 +83,9 @@ TEST_CASE_TEMPLATE("a 20-link chain released horizontally never stretches more t
     CHECK(worst < T(0.01));
 }
 
-TEST_CASE_TEMPLATE("a hinged door stops at its limit", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("a hinged door stops at its limit", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     scenes::add_ground(w);
     const BodyId frame = anchor_body(w, Vec3<T>{T(0), T(1.1), T(0)});
     BodyDef<T> d;
@@ -108,8 +111,9 @@ TEST_CASE_TEMPLATE("a hinged door stops at its limit", T, float, double) {
     CHECK(rotate(w.body(door).orientation(), Vec3<T>::unit_y()).y > T(0.999));
 }
 
-TEST_CASE_TEMPLATE("a hinge motor spins a wheel at its target speed and a weld holds two boxes as one", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("a hinge motor spins a wheel at its target speed and a weld holds two boxes as one", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const BodyId axle = anchor_body(w, Vec3<T>{T(0), T(3), T(0)});
     BodyDef<T> d;
     d.position = {T(0), T(3), T(0)};
@@ -141,8 +145,9 @@ TEST_CASE_TEMPLATE("a hinge motor spins a wheel at its target speed and a weld h
     CHECK(angle_between(relative.orientation, relative0.orientation) < T(5e-3));
 }
 
-TEST_CASE_TEMPLATE("bad joint definitions are reported and destroyed bodies take their joints along", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("bad joint definitions are reported and destroyed bodies take their joints along", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const BodyId fixed = anchor_body(w, Vec3<T>{});
     const BodyId other = anchor_body(w, Vec3<T>{T(1), T(0), T(0)});
     const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)));
@@ -164,8 +169,9 @@ TEST_CASE_TEMPLATE("bad joint definitions are reported and destroyed bodies take
     CHECK_THROWS_AS(w.destroy_joint(j), InvalidArgument);
 }
 
-TEST_CASE_TEMPLATE("a ragdoll falls onto a step and settles with its joints holding", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("a ragdoll falls onto a step and settles with its joints holding", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const scenes::Scene scene = scenes::ragdoll(w);
     auto gap = [&] {
         T worst = T(0);

@@ -24,8 +24,9 @@ BodyId box_with(World<T>& w, const Vec3<T>& position, T mu, T e = T(0)) {
 }
 }  // namespace
 
-TEST_CASE_TEMPLATE("free fall follows p0 + v0 t + g t^2 / 2 to integrator accuracy", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("free fall follows p0 + v0 t + g t^2 / 2 to integrator accuracy", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     BodyDef<T> def;
     def.position = {T(1), T(100), T(-2)};
     def.linear_velocity = {T(3), T(4), T(0)};
@@ -42,8 +43,9 @@ TEST_CASE_TEMPLATE("free fall follows p0 + v0 t + g t^2 / 2 to integrator accura
     CHECK(test::near(w.body(id).linear_velocity().y, T(4) - T(9.81) * t, T(1e-4)));
 }
 
-TEST_CASE_TEMPLATE("a box resting on the ground drifts under a millimetre and keeps four points for 10 s", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("a box resting on the ground drifts under a millimetre and keeps four points for 10 s", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     scenes::add_ground(w);
     const BodyId box = box_with(w, Vec3<T>{T(0.3), T(0.5), T(-0.2)}, T(0.6));
     const Vec3<T> start = w.body(box).position();
@@ -59,9 +61,10 @@ TEST_CASE_TEMPLATE("a box resting on the ground drifts under a millimetre and ke
     CHECK(std::abs(test::yaw(w.body(box).orientation())) < T(1e-4));
 }
 
-TEST_CASE_TEMPLATE("a box sliding at 2 and 5 m/s with mu 0.5 stops within 2 % of v^2/(2 mu g)", T, float, double) {
+TEST_CASE_TEMPLATE("a box sliding at 2 and 5 m/s with mu 0.5 stops within 2 % of v^2/(2 mu g)", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
     for (const T v0 : {T(2), T(5)}) {
-        World<T> w(test::awake_settings<T>());
+        World<T> w(C::settings());
         ground_with_friction(w, T(0.5));
         const BodyId box = box_with(w, Vec3<T>{T(0), T(0.5), T(0)}, T(0.5));
         simulate(w, T(0.5));  // settle on the ground first: no landing transient in the distance
@@ -82,10 +85,11 @@ TEST_CASE_TEMPLATE("a box sliding at 2 and 5 m/s with mu 0.5 stops within 2 % of
     }
 }
 
-TEST_CASE_TEMPLATE("a box on an incline stays below the friction angle and slides above it", T, float, double) {
+TEST_CASE_TEMPLATE("a box on an incline stays below the friction angle and slides above it", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
     const T mu = T(0.5);
     for (const T offset : {T(-0.05), T(0.05)}) {
-        World<T> w(test::awake_settings<T>());
+        World<T> w(C::settings());
         const T angle = std::atan(mu + offset);
         const Quat<T> tilt = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);
         BodyDef<T> ramp;
@@ -109,9 +113,10 @@ TEST_CASE_TEMPLATE("a box on an incline stays below the friction angle and slide
     }
 }
 
-TEST_CASE_TEMPLATE("a box dropped from h with restitution e bounces to e^2 h within 5 %", T, float, double) {
+TEST_CASE_TEMPLATE("a box dropped from h with restitution e bounces to e^2 h within 5 %", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
     const T h = T(2), e = T(0.6);
-    World<T> w(test::awake_settings<T>());
+    World<T> w(C::settings());
     BodyDef<T> g;
     g.type = BodyType::static_body;
     g.position = {T(0), T(-0.5), T(0)};
@@ -133,8 +138,9 @@ TEST_CASE_TEMPLATE("a box dropped from h with restitution e bounces to e^2 h wit
     CHECK(std::abs(apex - e * e * h) < T(0.05) * e * e * h);
 }
 
-TEST_CASE_TEMPLATE("with restitution 1 a box never bounces higher than it started, over 10 bounces", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("with restitution 1 a box never bounces higher than it started, over 10 bounces", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     BodyDef<T> g;
     g.type = BodyType::static_body;
     g.position = {T(0), T(-0.5), T(0)};
@@ -159,8 +165,9 @@ TEST_CASE_TEMPLATE("with restitution 1 a box never bounces higher than it starte
     CHECK(highest > T(2.0));  // and it does bounce back most of the way
 }
 
-TEST_CASE_TEMPLATE("momentum is conserved when two bodies collide without gravity", T, float, double) {
-    WorldSettings<T> s = test::awake_settings<T>();
+TEST_CASE_TEMPLATE("momentum is conserved when two bodies collide without gravity", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    WorldSettings<T> s = C::settings();
     s.gravity = Vec3<T>::zero();
     World<T> w(s);
     BodyDef<T> a;
@@ -182,8 +189,9 @@ TEST_CASE_TEMPLATE("momentum is conserved when two bodies collide without gravit
     CHECK(w.body(ib).linear_velocity().x > T(-1));  // B was pushed
 }
 
-TEST_CASE_TEMPLATE("a torque-free box keeps its angular momentum within 1 % over 10 s", T, float, double) {
-    WorldSettings<T> s = test::awake_settings<T>();
+TEST_CASE_TEMPLATE("a torque-free box keeps its angular momentum within 1 % over 10 s", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    WorldSettings<T> s = C::settings();
     s.gravity = Vec3<T>::zero();
     World<T> w(s);
     BodyDef<T> def;
@@ -201,8 +209,9 @@ TEST_CASE_TEMPLATE("a torque-free box keeps its angular momentum within 1 % over
     CHECK(worst < T(0.01));
 }
 
-TEST_CASE_TEMPLATE("spun near its intermediate axis a free box flips (Dzhanibekov)", T, float, double) {
-    WorldSettings<T> s = test::awake_settings<T>();
+TEST_CASE_TEMPLATE("spun near its intermediate axis a free box flips (Dzhanibekov)", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    WorldSettings<T> s = C::settings();
     s.gravity = Vec3<T>::zero();
     World<T> w(s);
     BodyDef<T> def;

@@ -1,8 +1,8 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// Stability (CTest label "slow"): stacks placed at rest, 10 s at 60 Hz, float and double, no
-// sleeping. Two numbers for each, asserted and printed:
+// Stability (CTest label "slow"): stacks placed at rest, 10 s at 60 Hz, float and double, in the
+// default settings (sleeping on) and with sleeping off. Two numbers for each, asserted and printed:
 //   creep  how far any box moves between t = 1 s and t = 10 s   (< 1 % of the box size)
 //   sag    how far the top box ends below where it was placed   (< 1 % of the box size)
 // Both solver modes run the same scenes; the default (soft step) is asserted, the other printed
@@ -25,8 +25,9 @@ struct StackResult {
 };
 
 template <class T, class Build>
-StackResult<T> run_stack(SolverMode mode, Build&& build) {
-    WorldSettings<T> s = test::awake_settings<T>();
+StackResult<T> run_stack(SolverMode mode, bool sleeping, Build&& build) {
+    WorldSettings<T> s;  // the defaults, with or without sleeping
+    s.allow_sleeping = sleeping;
     s.solver = mode;
     if (mode == SolverMode::baumgarte) {
         s.velocity_iterations = 10;
@@ -54,10 +55,13 @@ const char* name() {
 }  // namespace
 
 TEST_CASE_TEMPLATE("a 10-box column stands for 10 s with creep and sag under 1 % of a box", T, float, double) {
-    for (const SolverMode mode : {SolverMode::soft_step, SolverMode::baumgarte}) {
-        const StackResult<T> r = run_stack<T>(mode, [](World<T>& w) { return scenes::column(w, 10); });
-        std::printf("column-10   %s %-9s creep %.5f m  sag %.5f m\n", name<T>(), mode == SolverMode::soft_step ? "soft-step" : "baumgarte",
-                    double(r.creep), double(r.sag));
+    // Soft step (the default) with sleeping on (the defaults) and off (the solver alone, asserted
+    // the same); Baumgarte without sleeping, printed for comparison.
+    for (const auto& [mode, sleeping] : {std::pair{SolverMode::soft_step, true}, std::pair{SolverMode::soft_step, false},
+                                         std::pair{SolverMode::baumgarte, false}}) {
+        const StackResult<T> r = run_stack<T>(mode, sleeping, [](World<T>& w) { return scenes::column(w, 10); });
+        std::printf("column-10   %s %-9s %-8s creep %.5f m  sag %.5f m\n", name<T>(), mode == SolverMode::soft_step ? "soft-step" : "baumgarte",
+                    sleeping ? "sleeping" : "awake", double(r.creep), double(r.sag));
         if (mode == SolverMode::soft_step) {
             CHECK(r.creep < T(0.01));
             CHECK(r.sag < T(0.01));
@@ -67,10 +71,13 @@ TEST_CASE_TEMPLATE("a 10-box column stands for 10 s with creep and sag under 1 %
 }
 
 TEST_CASE_TEMPLATE("a 20-base pyramid of 210 boxes stands for 10 s with creep and sag under 1 % of a box", T, float, double) {
-    for (const SolverMode mode : {SolverMode::soft_step, SolverMode::baumgarte}) {
-        const StackResult<T> r = run_stack<T>(mode, [](World<T>& w) { return scenes::pyramid(w, 20); });
-        std::printf("pyramid-20  %s %-9s creep %.5f m  sag %.5f m\n", name<T>(), mode == SolverMode::soft_step ? "soft-step" : "baumgarte",
-                    double(r.creep), double(r.sag));
+    // Soft step (the default) with sleeping on (the defaults) and off (the solver alone, asserted
+    // the same); Baumgarte without sleeping, printed for comparison.
+    for (const auto& [mode, sleeping] : {std::pair{SolverMode::soft_step, true}, std::pair{SolverMode::soft_step, false},
+                                         std::pair{SolverMode::baumgarte, false}}) {
+        const StackResult<T> r = run_stack<T>(mode, sleeping, [](World<T>& w) { return scenes::pyramid(w, 20); });
+        std::printf("pyramid-20  %s %-9s %-8s creep %.5f m  sag %.5f m\n", name<T>(), mode == SolverMode::soft_step ? "soft-step" : "baumgarte",
+                    sleeping ? "sleeping" : "awake", double(r.creep), double(r.sag));
         if (mode == SolverMode::soft_step) {
             CHECK(r.creep < T(0.01));
             CHECK(r.sag < T(0.01));
@@ -79,8 +86,9 @@ TEST_CASE_TEMPLATE("a 20-base pyramid of 210 boxes stands for 10 s with creep an
     }
 }
 
-TEST_CASE_TEMPLATE("a box 400 times heavier rests on a light one without exploding", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("a box 400 times heavier rests on a light one without exploding", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const scenes::Scene scene = scenes::heavy_on_light(w);
     const BodyId light = scene.bodies[0], heavy = scene.bodies[1];
     REQUIRE(w.body(heavy).mass() == doctest::Approx(400 * w.body(light).mass()));
@@ -99,11 +107,12 @@ TEST_CASE_TEMPLATE("a box 400 times heavier rests on a light one without explodi
     CHECK(std::abs(w.body(light).position().x) < T(0.01));
 }
 
-TEST_CASE_TEMPLATE("a heavier box on a lighter one comes to rest at every mass ratio up to 1000", T, float, double) {
+TEST_CASE_TEMPLATE("a heavier box on a lighter one comes to rest at every mass ratio up to 1000", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
     // Regression: with static contacts twice as stiff as the others (Box2D's choice), ratios from
     // 5:1 to 200:1 rocked at 3-10 cm/s for ever (found by xeno_scale_sweep).
     for (const T ratio : {T(2), T(5), T(10), T(50), T(200), T(1000)}) {
-        World<T> w(test::awake_settings<T>());
+        World<T> w(C::settings());
         scenes::add_ground(w);
         const BodyId light = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5), T(0)}, Quat<T>::identity(), T(100));
         const BodyId heavy =
@@ -117,8 +126,9 @@ TEST_CASE_TEMPLATE("a heavier box on a lighter one comes to rest at every mass r
     }
 }
 
-TEST_CASE_TEMPLATE("scenario 7: block on plank on prism settles", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("scenario 7: block on plank on prism settles", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const scenes::Scene scene = scenes::seesaw(w);
     test::simulate(w, T(6));
     const T energy = test::kinetic_energy(w);
@@ -132,8 +142,9 @@ TEST_CASE_TEMPLATE("scenario 7: block on plank on prism settles", T, float, doub
     CHECK(plank_x.y < T(-0.05));
 }
 
-TEST_CASE_TEMPLATE("scenario 8: a row of 24 dominoes falls in sequence to the last one", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("scenario 8: a row of 24 dominoes falls in sequence to the last one", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const scenes::Scene scene = scenes::dominoes(w, 24);
     std::vector<int> fell_at(scene.bodies.size(), -1);
     test::simulate(w, T(12), [&](int step) {

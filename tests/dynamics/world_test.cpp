@@ -88,8 +88,9 @@ TEST_CASE_TEMPLATE("bad input at body creation and stepping is reported, never s
     CHECK_THROWS_AS(World<T>{bad}, InvalidArgument);
 }
 
-TEST_CASE_TEMPLATE("update runs whole fixed steps, caps them and leaves an interpolation factor", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("update runs whole fixed steps, caps them and leaves an interpolation factor", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     BodyDef<T> d;
     d.linear_velocity = {T(1), T(0), T(0)};
     d.gravity_scale = T(0);
@@ -102,8 +103,9 @@ TEST_CASE_TEMPLATE("update runs whole fixed steps, caps them and leaves an inter
     CHECK(near(w.body(id).position().x, T(10) / T(60), T(1e-4)));
 }
 
-TEST_CASE_TEMPLATE("static bodies never move and kinematic bodies push dynamic ones", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("static bodies never move and kinematic bodies push dynamic ones", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     const BodyId ground = scenes::add_ground(w);
     const BodyId box = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5), T(0)});
     BodyDef<T> k;
@@ -119,8 +121,9 @@ TEST_CASE_TEMPLATE("static bodies never move and kinematic bodies push dynamic o
     CHECK(w.body(pusher).mass() == std::numeric_limits<T>::infinity());
 }
 
-TEST_CASE_TEMPLATE("forces and impulses at a point change velocity and spin as Newton says", T, float, double) {
-    WorldSettings<T> s = test::awake_settings<T>();
+TEST_CASE_TEMPLATE("forces and impulses at a point change velocity and spin as Newton says", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    WorldSettings<T> s = C::settings();
     s.gravity = Vec3<T>::zero();
     World<T> w(s);
     const BodyId id = w.create_body(Sphere<T>(T(0.5)));
@@ -144,8 +147,9 @@ TEST_CASE_TEMPLATE("forces and impulses at a point change velocity and spin as N
     CHECK(near(w.body(id).local_vector(w.body(id).world_vector(p)), p));
 }
 
-TEST_CASE_TEMPLATE("destroying a body under another leaves a consistent world and the top one falls", T, float, double) {
-    World<T> w(test::awake_settings<T>());
+TEST_CASE_TEMPLATE("destroying a body under another leaves a consistent world and the top one falls", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    World<T> w(C::settings());
     scenes::add_ground(w);
     const BodyId bottom = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5), T(0)});
     const BodyId top = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(1.5), T(0)});

@@ -21,6 +21,30 @@ WorldSettings<T> awake_settings() {
     return s;
 }
 
+/// A test configuration: the scalar and the settings. Dynamics tests run in the defaults a user
+/// gets (sleeping on) as well as with sleeping off (the solver alone), through one test template
+/// instantiated for every XENO_TEST_CONFIGS entry; a test reads `using T = typename C::T;` and
+/// builds its world from `C::settings()`.
+template <class Scalar, bool Sleeping>
+struct Config {
+    using T = Scalar;
+    static constexpr bool sleeping = Sleeping;
+    static WorldSettings<T> settings() {
+        WorldSettings<T> s;  // the defaults
+        s.allow_sleeping = Sleeping;
+        return s;
+    }
+};
+
+}  // namespace xeno::test
+
+/// Every scalar with the default settings and with sleeping off.
+#define XENO_TEST_CONFIGS                                                                              \
+    xeno::test::Config<float, true>, xeno::test::Config<double, true>, xeno::test::Config<float, false>, \
+        xeno::test::Config<double, false>
+
+namespace xeno::test {
+
 /// Steps `seconds` at the settings' fixed step, calling `each(step_index)` after every step.
 template <class T>
 void simulate(World<T>& world, T seconds, const std::function<void(int)>& each = {}) {
