@@ -6,7 +6,9 @@
 #      docs/tooling.md);
 #   2. every relative Markdown link in a tracked .md file (README.md, docs/*.md, ...) names a file
 #      or folder of the repository, and, where it has a #fragment into a Markdown file, a heading
-#      of that file (GitHub's anchor rules).
+#      of that file (GitHub's anchor rules);
+#   3. every citation of a section in the form  docs/<name>.md, "<heading>"  (how comments point at
+#      the docs) names an existing heading of that file.
 # Lists every offending line as file:line: text and exits 1; exits 0 when there is none.
 # Usage: scripts/check_refs.sh   (from anywhere; outside a git checkout it scans the files on disk)
 set -euo pipefail
@@ -119,6 +121,44 @@ done
 if ((${#link_errors[@]})); then
   echo "Broken relative Markdown links:"
   printf '%s\n' "${link_errors[@]}"
+  failed=1
+fi
+
+# 3. Section citations in comments and prose: docs/<name>.md, "<heading>" (possibly wrapped over a
+#    comment line break) must name a file of the repository and a heading in it.
+section_errors=$(printf '%s\0' "${files[@]}" | xargs -0 perl -CSD -e '
+  use strict; use warnings;
+  my %cache;
+  sub headings {
+    my ($f) = @_;
+    return $cache{$f} //= do {
+      my %h; my $fence = 0;
+      if (open my $fh, "<:encoding(UTF-8)", $f) {
+        while (<$fh>) {
+          if (/^\s*(```|~~~)/) { $fence = !$fence; next }
+          next if $fence;
+          $h{$1} = 1 if /^#+\s+(.*?)\s*#*\s*$/;
+        }
+      }
+      \%h;
+    };
+  }
+  for my $file (@ARGV) {
+    next unless -T $file;
+    open my $fh, "<:encoding(UTF-8)", $file or next;
+    my $text = do { local $/; <$fh> };
+    my $gap = qr{\s*(?:\n\s*(?://+|\#+)?\s*)?};
+    while ($text =~ m{(docs/[A-Za-z0-9_.-]+\.md)(?:\]\([^)\n]*\))?,$gap"([^"\n]+(?:\n\s*(?://+|\#+)?\s*[^"\n]+)?)"}g) {
+      my ($doc, $heading, $at) = ($1, $2, $-[0]);
+      $heading =~ s{\s*\n\s*(?://+|\#+)?\s*}{ }g;
+      my $line = 1 + (substr($text, 0, $at) =~ tr/\n//);
+      if (!-f $doc) { print "$file:$line: $doc: no such file in the repository\n" }
+      elsif (!headings($doc)->{$heading}) { print "$file:$line: $doc has no heading \"$heading\"\n" }
+    }
+  }' || true)
+if [[ -n "$section_errors" ]]; then
+  echo "Citations of a section that does not exist:"
+  printf '%s\n' "$section_errors"
   failed=1
 fi
 
