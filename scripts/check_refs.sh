@@ -126,6 +126,7 @@ fi
 
 # 3. Section citations in comments and prose: docs/<name>.md, "<heading>" (possibly wrapped over a
 #    comment line break) must name a file of the repository and a heading in it.
+# shellcheck disable=SC2016  # the Perl program is meant to be single-quoted
 section_errors=$(printf '%s\0' "${files[@]}" | xargs -0 perl -CSD -e '
   use strict; use warnings;
   my %cache;
