@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # The README's second command: set up, then build and run everything xeno tests.
+#   0. no file cites anything outside the repository (scripts/check_refs.sh)
 #   1. g++ Release, warnings as errors: every public header compiled alone, tests (unit + slow),
 #      benchmarks and examples built
 #   2. clang++ Release, warnings as errors: every header alone, the unit tests (the slow ones run
@@ -40,6 +41,9 @@ if [[ "${XENO_TEST_QUICK:-0}" == 1 ]]; then
   ctest_args="-LE slow" configure_and_test gcc
   exit 0
 fi
+
+step "every reference in the repository points inside it"
+scripts/check_refs.sh
 
 step "g++ Release, -Werror, all targets"
 configure_and_test gcc -DCMAKE_CXX_COMPILER=g++

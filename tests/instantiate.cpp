@@ -1,11 +1,11 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// Every class template instantiated for both scalars (STYLE.md): member functions no test calls
-// still compile, with the warnings on, in float and in double. Also where the World's members are
-// compiled, once, for every test executable: the tests see World<float> and World<double> as
-// extern templates (support/extern_templates.hpp, in their precompiled header), which cut an
-// ASan + UBSan test translation unit from about 200 s to 15 s.
+// Every class template instantiated for both scalars (docs/style.md, "Every template compiled"):
+// member functions no test calls still compile, with the warnings on, in float and in double. Also
+// where the World's members are compiled, once, for every test executable: the tests see
+// World<float> and World<double> as extern templates (support/extern_templates.hpp, in their
+// precompiled header), which cut an ASan + UBSan test translation unit from about 200 s to 15 s.
 #include <xeno/xeno.hpp>
 
 #define XENO_INSTANTIATE(T)                                                                                   \

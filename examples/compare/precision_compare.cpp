@@ -3,8 +3,8 @@
 //
 // xeno_precision: every scene run in float and in double side by side, in one program, from the
 // same initial state, and the two histories compared step by step. This is what templating the
-// engine on the scalar buys (STYLE.md, "The scalar parameter"): engines with a build-wide precision
-// macro need two binaries and cannot line the runs up step by step.
+// engine on the scalar buys (docs/style.md, "The scalar parameter"): engines with a build-wide
+// precision macro need two binaries and cannot line the runs up step by step.
 //
 //   1. build the scene in a World<double> and in a World<float>; then overwrite every float body's
 //      pose and velocities with the double ones rounded to float, so the float run starts from the

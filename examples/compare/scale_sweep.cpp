@@ -2,9 +2,10 @@
 // SPDX-License-Identifier: MIT
 //
 // xeno_scale_sweep: where each build (float, double) stops being stable when a scene leaves the
-// 0.1–10 m, equal-mass, near-the-origin range the solver's defaults are tuned for (CONVENTIONS.md,
-// "Contacts"). Every case runs in float and in double with the default settings but sleeping off
-// (a sleeping body cannot creep, which would hide the very thing measured), at 60 Hz:
+// 0.1–10 m, equal-mass, near-the-origin range the solver's defaults are tuned for
+// (docs/conventions.md, "Contacts"). Every case runs in float and in double with the default
+// settings but sleeping off (a sleeping body cannot creep, which would hide the very thing
+// measured), at 60 Hz:
 //   size      a cube of edge s (1 mm … 1 km) on a unit cube on the ground, 5 s; once with the same
 //             mass as the unit cube (the size ratio alone), once with the same density (mass ratio
 //             s³ as well). Stable: finite; the unit cube moved less than 1 cm; the cube's centre

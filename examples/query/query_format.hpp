@@ -2,8 +2,8 @@
 // SPDX-License-Identifier: MIT
 //
 // The text format of xeno_query, the narrow-phase query tool, and its conversion to the library's
-// conventions. The format is an interchange format fixed by its issue (CONVENTIONS.md): one pair
-// per line, tab-separated columns
+// conventions. The format is an interchange format fixed by its issue (docs/conventions.md, "Units
+// and axes"): one pair per line, tab-separated columns
 //     id  shapeA  posA  quatA  shapeB  posB  quatB      (columns after the seventh are ignored)
 // where a position is "x y z" (the shape's local origin in the world), a quaternion "w x y z"
 // (normalised here; zero or non-finite is rejected) and a shape one of

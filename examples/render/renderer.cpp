@@ -1,7 +1,7 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// The OSMesa renderer (renderer.hpp). Facts it relies on (docs/TOOLING.md, section 4):
+// The OSMesa renderer (renderer.hpp). Facts it relies on (docs/tooling.md, "OSMesa"):
 //  - OSMesaCreateContextAttribs with a 3.3 core profile gives llvmpipe's 4.5 core context; the
 //    legacy OSMesaCreateContextExt gives 4.5 compatibility, where the same #version 330 shaders
 //    and VAOs work, so it is a usable fallback.
@@ -718,7 +718,8 @@ void Renderer::end_frame() {
     r.lines_drawn = static_cast<std::size_t>(r.lines.vertex_count()) / 2;
     r.points_drawn = static_cast<std::size_t>(r.points.vertex_count()) / 6;
 
-    // Resolve into OSMesa's buffer; glFinish must see framebuffer 0 bound (TOOLING.md 4).
+    // Resolve into OSMesa's buffer; glFinish must see framebuffer 0 bound (docs/tooling.md,
+    // "OSMesa").
     glBindFramebuffer(GL_READ_FRAMEBUFFER, r.fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     glBlitFramebuffer(0, 0, r.width, r.height, 0, 0, r.width, r.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);

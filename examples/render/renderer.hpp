@@ -4,7 +4,7 @@
 // An off-screen OpenGL renderer for the examples: OSMesa (Mesa's llvmpipe, no display, no GPU)
 // draws lit, flat-shaded triangles, lines and point markers over a sky gradient and a ground grid
 // on y = 0, into a 4x multisampled framebuffer that is resolved into a CPU buffer each frame and
-// can be written as PNG. World units are metres, y is up (CONVENTIONS.md).
+// can be written as PNG. World units are metres, y is up (docs/conventions.md, "Units and axes").
 //
 // One frame:  begin_frame(camera)  -> clears, draws sky and ground
 //             draw_triangle/line/point ... -> appended to per-type batches (no GL calls)

@@ -2,8 +2,8 @@
 // SPDX-License-Identifier: MIT
 //
 // What a scene function returns: the bodies a test or a renderer cares about and a suggested
-// camera. Scenes are shared by the renderer, the tests and the benchmarks (STYLE.md, "Scenes are
-// shared, not copied"), so what is drawn is what is tested.
+// camera. Scenes are shared by the renderer, the tests and the benchmarks (docs/style.md,
+// "Tests and scenes"), so what is drawn is what is tested.
 #pragma once
 
 #include <xeno/dynamics/world.hpp>

@@ -1,7 +1,7 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// How xeno reports bad input, once for the whole library (CONVENTIONS.md, "Errors").
+// How xeno reports bad input, once for the whole library (docs/conventions.md, "Errors").
 //
 // Every public entry point that takes user data (shape builders, body creation, settings,
 // World::step) checks it before use. A rejected value throws xeno::InvalidArgument, derived from

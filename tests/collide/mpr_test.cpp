@@ -2,8 +2,8 @@
 // SPDX-License-Identifier: MIT
 //
 // MPR (XenoCollide) on its own: the six contact kinds of the thesis's scenarios 1–6, exact answers
-// for simple pairs, every degenerate case of COLLISION-NOTES.md 1, invariances on random pairs,
-// and the regressions other MPR/GJK implementations shipped.
+// for simple pairs, every case of docs/collision.md, "Degenerate cases", invariances on random
+// pairs, and the regressions other MPR/GJK implementations shipped.
 #include "support/approx.hpp"
 
 #include "scenes/random.hpp"

@@ -1,9 +1,9 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// Sane input never produces NaN (CONVENTIONS.md, "Errors"): every scene of the registry, in float
-// and double, stepped 5 s at 60 Hz, with every body checked after every step: finite position,
-// orientation and velocities, and an orientation of unit length within 1e-3.
+// Sane input never produces NaN (docs/conventions.md, "Errors"): every scene of the registry, in
+// float and double, stepped 5 s at 60 Hz, with every body checked after every step: finite
+// position, orientation and velocities, and an orientation of unit length within 1e-3.
 #include "scenes/all.hpp"
 
 #include <doctest/doctest.h>

@@ -2,8 +2,8 @@
 // SPDX-License-Identifier: MIT
 //
 // Box against box by separating axes in closed form, the fast path of the narrow phase for the
-// most common pair (COLLISION-NOTES.md 4, item 4: "for box–box the full set is only 15 axes with
-// closed-form projections: cheaper than MPR and exact"). Gottschalk, Lin & Manocha, "OBBTree"
+// most common pair (docs/collision.md, "Box against box": only 15 axes, each with a closed-form
+// overlap, so cheaper than MPR and exact). Gottschalk, Lin & Manocha, "OBBTree"
 // (SIGGRAPH 1996), in the form of Ericson, "Real-Time Collision Detection" 4.4.1: in A's frame,
 // with R the rotation of B and t the offset of B, each axis's overlap is the sum of the two
 // projected radii minus the projected centre distance. The 6 face axes are tried first; one of the

@@ -7,10 +7,11 @@
 //   collide()            MPR penetration (for two boxes: the closed-form separating-axis test of
 //                        box_box.hpp, exact and cheaper), then normal refinement: MPR's normal is where the
 //                        centre line leaves A ⊖ B, not the direction of least penetration, and for a
-//                        resting face it is slightly tilted (COLLISION-NOTES.md 4). The supporting
-//                        faces of both shapes along that normal are tried as axes (one support
-//                        call each) and the axis with the smallest depth wins, faces preferred
-//                        within a small slack, so a resting contact gets the exact face normal;
+//                        resting face it is slightly tilted (docs/collision.md, "Normal
+//                        refinement"). The supporting faces of both shapes along that normal are
+//                        tried as axes (one support call each) and the axis with the smallest depth
+//                        wins, faces preferred within a small slack, so a resting contact gets the
+//                        exact face normal;
 //   generate_contacts()  the same on shapes inflated by a speculative margin, then a whole
 //                        manifold by face clipping (face_clip.hpp): what the world uses per pair.
 #pragma once

@@ -1,8 +1,9 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// A whole contact manifold in one step, from one contact normal (COLLISION-NOTES.md 5,
-// SOLVER-NOTES.md 3.2; after Box3D's b3BuildFaceAContact and Jolt's ManifoldBetweenTwoFaces):
+// A whole contact manifold in one step, from one contact normal (docs/collision.md,
+// "Contact manifolds by clipping"; after Box3D's b3BuildFaceAContact and Jolt's
+// ManifoldBetweenTwoFaces):
 //   1. each shape gives its supporting face along the normal (A along n, B along −n): a polygon
 //      for a box or hull face, a cylinder cap or a cone base; a segment for a capsule's or a
 //      cylinder's side; a point for a sphere or a rounded end;

@@ -2,11 +2,12 @@
 // SPDX-License-Identifier: MIT
 //
 // The Minkowski difference D = A ⊖ B = {a − b} of two placed shapes, evaluated in A's local frame
-// (COLLISION-NOTES.md 6: the relative rotation and offset are computed once per pair, so each
-// support evaluation costs one matrix product for B and none for A, and the numbers stay near the
-// origin even when both bodies are far from it). Each support point keeps its two witnesses, the
-// points of A and of B it came from, so the narrow phase can report a point on each body.
-// With D = A ⊖ B the portal normal at the end of MPR points from A to B (CONVENTIONS.md).
+// (docs/collision.md, "Working in A's frame": the relative rotation and offset are computed once
+// per pair, so each support evaluation costs one matrix product for B and none for A, and the
+// numbers stay near the origin even when both bodies are far from it). Each support point keeps its
+// two witnesses, the points of A and of B it came from, so the narrow phase can report a point on
+// each body. With D = A ⊖ B the portal normal at the end of MPR points from A to B
+// (docs/conventions.md, "Contacts").
 #pragma once
 
 #include "../math/transform.hpp"
@@ -34,7 +35,8 @@ public:
     static_assert(std::is_same_v<T, typename B::scalar_type>, "both shapes must use the same scalar");
 
     /// margin (metres, >= 0) inflates A by a sphere of that radius, so that pairs closer than the
-    /// margin overlap: the world uses it for speculative contacts (COLLISION-NOTES.md 7).
+    /// margin overlap: the world uses it for speculative contacts (docs/collision.md, "Speculative
+    /// margin").
     MinkowskiDifference(const A& a, const Transform<T>& pose_a, const B& b, const Transform<T>& pose_b, T margin = T(0))
         : a_(a), b_(b), pose_a_(pose_a), margin_(margin) {
         const Quat<T> inv_a = conjugate(pose_a.orientation);
@@ -62,7 +64,7 @@ public:
     /// mass; when one shape is much larger (bounding radii 4:1 or more) its point moves, within a
     /// box inside it, as close as it can to the smaller shape's centre, so that the ray from v0
     /// crosses the surface the small shape actually touches instead of leaving through a far side
-    /// (COLLISION-NOTES.md 2, the size-ratio case; Newton issue 3773).
+    /// (docs/collision.md, "Large size ratios"; Newton issue 3773).
     SupportPoint<T> interior() const {
         Vec3<T> pa = a_.interior_point();
         Vec3<T> pb = to_a(b_.interior_point());

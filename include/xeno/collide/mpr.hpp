@@ -3,8 +3,8 @@
 //
 // Minkowski Portal Refinement (XenoCollide): Snethen, "XenoCollide: Complex Collision Made
 // Simple", Game Programming Gems 7 (2008); the seed thesis 2.2.1 and Apêndice A; degenerate cases
-// as catalogued in COLLISION-NOTES.md 1. Templated on the two shape types: every support call is a
-// direct, inlinable call (no virtual dispatch per support evaluation).
+// as catalogued in docs/collision.md, "Degenerate cases". Templated on the two shape types: every
+// support call is a direct, inlinable call (no virtual dispatch per support evaluation).
 //
 // D = A ⊖ B contains the origin iff A and B overlap. With v0 inside D, the origin is in D iff the
 // ray from v0 through the origin reaches the origin before leaving D.
@@ -57,7 +57,8 @@ Penetration<typename A::scalar_type> mpr_penetration(const A& a, const Transform
 
 namespace detail {
 
-/// Iteration cap for each MPR phase; a polytope pair needs fewer than 10 (COLLISION-NOTES.md 6).
+/// Iteration cap for each MPR phase; a polytope pair needs fewer than 10 (docs/collision.md,
+/// "Iteration counts").
 constexpr int kMprMaxIterations = 64;
 
 template <class T>

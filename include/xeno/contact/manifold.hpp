@@ -6,7 +6,7 @@
 // btPersistentManifold). Pair convention, used everywhere: bodies A and B, the normal points from
 // A to B, depth is positive when they overlap.
 //
-// Two ways to refresh it each step (docs/solver.md, "Contact manifolds"):
+// Two ways to refresh it each step (docs/solver-design.md, "Contact manifolds"):
 //   whole    the narrow phase clipped two supporting faces and returned up to four points at
 //            once (polytopes, cylinder caps, cone bases, capsule and cylinder sides): the points
 //            are replaced, and each new point inherits the impulse of the old point whose body-

@@ -2,7 +2,8 @@
 // SPDX-License-Identifier: MIT
 //
 // Body<T>: a rigid body (the thesis's RigidBody, 3.2.2.5). Its position is its centre of mass and
-// its orientation turns the shape's local frame about that point (CONVENTIONS.md). Three kinds:
+// its orientation turns the shape's local frame about that point (docs/conventions.md, "Frames").
+// Three kinds:
 //   static     never moves (the ground); infinite mass. The thesis made a body static by not
 //              computing its mass properties (Quadro 10); here it is said explicitly.
 //   kinematic  moved by the user through its velocity; infinite mass, so it pushes dynamic bodies

@@ -2,11 +2,12 @@
 // SPDX-License-Identifier: MIT
 //
 // Sequential impulses on contacts (Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005;
-// "Fast and Simple Physics using Sequential Impulses", GDC 2006; SOLVER-NOTES.md 1), in the phases
-// World::step calls: prepare → (per substep: warm_start → solve(bias) → relax) → restitution →
-// store. Per contact point one normal row; per manifold one two-axis friction row at the centre
-// of the patch and one twist row about the normal (Box3D's central friction, SOLVER-NOTES.md 6.3):
-// order-independent, so a symmetric box sliding straight stays straight.
+// "Fast and Simple Physics using Sequential Impulses", GDC 2006; docs/solver-design.md, "Sequential
+// impulses"), in the phases World::step calls: prepare → (per substep: warm_start → solve(bias) →
+// relax) → restitution → store. Per contact point one normal row; per manifold one two-axis
+// friction row at the centre of the patch and one twist row about the normal (Box3D's central
+// friction; docs/solver-design.md, "Central friction"): order-independent, so a symmetric box
+// sliding straight stays straight.
 //
 // Normal row, with the current separation s updated from the bodies' displacement this step:
 //   s > 0 (speculative)  bias = s/h: the bodies may close the gap this substep, not more;

@@ -2,10 +2,11 @@
 // SPDX-License-Identifier: MIT
 //
 // WorldSettings<T>: every tunable of the solver in one struct, in SI units for bodies of 0.1–10 m
-// (CONVENTIONS.md). docs/solver.md explains each and how the defaults were chosen; the numbers
-// follow Box2D v3's soft step (SOLVER-NOTES.md 2.5, 7) with 12 substeps and contacts at 90 Hz
-// (measured in docs/solver.md: 8 substeps at 60 Hz let a 400:1 stack overlap 3.1 cm and the
-// 5,050-box pyramid buckle out of its plane; 12 at 90 Hz hold both, for 1.4 times the cost).
+// (docs/conventions.md, "Units and axes"). docs/solver.md explains each and how the defaults were
+// chosen; the numbers follow Box2D v3's soft step (docs/solver-design.md, "Defaults") with 12
+// substeps and contacts at 90 Hz (measured in docs/solver.md: 8 substeps at 60 Hz let a 400:1 stack
+// overlap 3.1 cm and the 5,050-box pyramid buckle out of its plane; 12 at 90 Hz hold both, for 1.4
+// times the cost).
 #pragma once
 
 #include "../broadphase/pair.hpp"

@@ -2,11 +2,12 @@
 // SPDX-License-Identifier: MIT
 //
 // The solver's per-body state for one step: the compact array that steps 4–9 of World::step touch
-// (STYLE.md, "One World<T>::step"), like Box2D's b2BodyState. It holds the velocities and the
-// displacement since the step began, so contact separations can be updated every substep without
-// running collision again: s = s0 + n · (Δx_B − Δx_A + R(Δq_B) r_B − R(Δq_A) r_A) (Box2D v3,
-// contact_solver.c). Inverse mass and world inverse inertia are frozen for the step (Box3D).
-// Slot 0 is a static stand-in: zero velocity, zero inverse mass, so static bodies need no branch.
+// (docs/style.md, "The step reads top to bottom"), like Box2D's b2BodyState. It holds the
+// velocities and the displacement since the step began, so contact separations can be updated every
+// substep without running collision again: s = s0 + n · (Δx_B − Δx_A + R(Δq_B) r_B − R(Δq_A) r_A)
+// (Box2D v3, contact_solver.c). Inverse mass and world inverse inertia are frozen for the step
+// (Box3D). Slot 0 is a static stand-in: zero velocity, zero inverse mass, so static bodies need no
+// branch.
 #pragma once
 
 #include "../math/quat.hpp"

@@ -12,7 +12,8 @@
 //    5. prepare          solver bodies and contact rows (anchors, effective masses, softness,
 //                        restitution speeds captured before gravity)
 //    6. substeps         integrate velocities → warm start → solve with bias → integrate positions
-//                        → relax (SOLVER-NOTES.md 2.6; one substep and N iterations in baumgarte mode)
+//                        → relax (docs/solver-design.md, "Substeps"; baumgarte mode: one substep
+//                        and N iterations)
 //    7. restitution      one pass after the substeps
 //    8. finish           impulses stored in the manifolds, poses and velocities written back
 //    9. sleep, events    islands of slow bodies fall asleep; contact events are reported

@@ -1,12 +1,12 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// Quat<T>: a unit quaternion (w, x, y, z) for orientations, Hamilton product (CONVENTIONS.md).
-// q * p applies p first, then q; rotate(q, v) = q (0, v) q*. Euler angles follow one convention:
-// yaw about y, then pitch about the new x, then roll about the newest z (intrinsic Y-X'-Z'', the
-// y-up form of aircraft angles): q = q_y(yaw) q_x(pitch) q_z(roll). At pitch = ±90° yaw and roll
-// act about the same axis (gimbal lock); to_euler then reports roll = 0 and folds it into yaw, which
-// gives the same rotation.
+// Quat<T>: a unit quaternion (w, x, y, z) for orientations, Hamilton product (docs/conventions.md,
+// "Frames"). q * p applies p first, then q; rotate(q, v) = q (0, v) q*. Euler angles follow one
+// convention: yaw about y, then pitch about the new x, then roll about the newest z (intrinsic
+// Y-X'-Z'', the y-up form of aircraft angles): q = q_y(yaw) q_x(pitch) q_z(roll). At pitch = ±90°
+// yaw and roll act about the same axis (gimbal lock); to_euler then reports roll = 0 and folds it
+// into yaw, which gives the same rotation.
 #pragma once
 
 #include "mat3.hpp"

@@ -2,10 +2,10 @@
 // SPDX-License-Identifier: MIT
 //
 // Box<T>: a rectangular box centred on its centre of mass, given by half extents along the local
-// x, y and z axes. Support by sign selection (COLLISION-NOTES.md 6), exact and branch-free:
-// std::copysign instead of a comparison, because the signs of random directions defeat branch
-// prediction (measured: one MPR miss 88 → 64 ns). A zero component takes the sign of the zero
-// (+0 gives +, −0 gives −), so the answer is deterministic.
+// x, y and z axes. Support by sign selection (docs/collision.md, "Support functions"), exact and
+// branch-free: std::copysign instead of a comparison, because the signs of random directions defeat
+// branch prediction (measured: one MPR miss 88 → 64 ns). A zero component takes the sign of the
+// zero (+0 gives +, −0 gives −), so the answer is deterministic.
 #pragma once
 
 #include "../error.hpp"

@@ -2,9 +2,10 @@
 // SPDX-License-Identifier: MIT
 //
 // Capsule<T>: the segment from (0, -h, 0) to (0, h, 0) on the local y axis swept by a sphere of
-// radius r (CONVENTIONS.md: h is the segment's half-length, caps excluded). Support: the segment
-// end along d plus r·d/|d|. The supporting face of a direction nearly perpendicular to the axis is
-// the side line (two points), so a capsule lying flat gets a two-point manifold at once.
+// radius r (docs/conventions.md, "Units and axes": h is the segment's half-length, caps excluded).
+// Support: the segment end along d plus r·d/|d|. The supporting face of a direction nearly
+// perpendicular to the axis is the side line (two points), so a capsule lying flat gets a two-point
+// manifold at once.
 #pragma once
 
 #include "../error.hpp"

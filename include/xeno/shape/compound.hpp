@@ -7,7 +7,7 @@
 // each child's inertia is turned into the compound's axes (R I Rᵀ) and moved to the common
 // centre of mass (parallel-axis theorem), then summed. Like the hull builder, the constructor
 // re-centres the children on that centre of mass and reports the shift it applied, so the body's
-// position is its centre of mass (CONVENTIONS.md).
+// position is its centre of mass (docs/conventions.md, "Frames").
 #pragma once
 
 #include "shape.hpp"

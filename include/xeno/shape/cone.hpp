@@ -2,10 +2,11 @@
 // SPDX-License-Identifier: MIT
 //
 // Cone<T>: base radius r, full height H, axis along local y, apex up. The local origin is the
-// centre of mass (CONVENTIONS.md), a quarter of the height above the base: base at y = -H/4, apex
-// at y = 3H/4. Support (COLLISION-NOTES.md 6, after Bullet's coneLocalSupport): the apex when d is
-// within the apex's normal cone (dy > |d| sin α, sin α = r/√(r² + H²)), else the rim point along d.
-// The supporting face is the base (a 12-gon), the side line from apex to rim, or the apex alone.
+// centre of mass (docs/conventions.md, "Frames"), a quarter of the height above the base: base at
+// y = -H/4, apex at y = 3H/4. Support (docs/collision.md, "Support functions", after Bullet's
+// coneLocalSupport): the apex when d is within the apex's normal cone (dy > |d| sin α, sin
+// α = r/√(r² + H²)), else the rim point along d. The supporting face is the base (a 12-gon), the
+// side line from apex to rim, or the apex alone.
 #pragma once
 
 #include "../error.hpp"

@@ -7,8 +7,8 @@
 // QuickHull3D (2004) and Gregorius, "Implementing Quickhull" (GDC 2014) do. Points are in metres.
 // Every hull vertex is an input point; points inside, on a face or on the inside of an edge are
 // dropped; coplanar triangles become one polygon face, counter-clockwise seen from outside. The
-// result is re-centred on its centroid (CONVENTIONS.md): input point = polyhedron vertex + shift,
-// up to the round-off in T of subtracting and adding the shift.
+// result is re-centred on its centroid (docs/conventions.md, "Frames"): input point = polyhedron
+// vertex + shift, up to the round-off in T of subtracting and adding the shift.
 //
 // Tolerances scale with the cloud. With d the diagonal of its bounding box, a face is ε = d ×
 // geometric_tolerance thick (1e-5 d in float, 1e-9 d in double): a point less than ε above the hull

@@ -15,7 +15,7 @@
 //
 // The local origin is not required to be inside: interior_point() returns the volume centroid,
 // which is. Builders (convex_hull.hpp, the make_* functions) re-centre on the centroid so the local
-// origin is the centre of mass, as bodies expect (CONVENTIONS.md).
+// origin is the centre of mass, as bodies expect (docs/conventions.md, "Frames").
 #pragma once
 
 #include "../error.hpp"

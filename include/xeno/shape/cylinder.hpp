@@ -1,10 +1,10 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// Cylinder<T>: radius r, half height h, axis along local y, centred. Support (COLLISION-NOTES.md 6):
-// (r·dx/σ, sign(dy)·h, r·dz/σ) with σ = |(dx, dz)|; on the axis (σ = 0) the cap centre. The
-// supporting face is a cap, approximated by a regular 12-gon inscribed in the rim, when d is
-// closer to the axis than to the side; else the side line (two points).
+// Cylinder<T>: radius r, half height h, axis along local y, centred. Support (docs/collision.md,
+// "Support functions"): (r·dx/σ, sign(dy)·h, r·dz/σ) with σ = |(dx, dz)|; on the axis (σ = 0) the
+// cap centre. The supporting face is a cap, approximated by a regular 12-gon inscribed in the rim,
+// when d is closer to the axis than to the side; else the side line (two points).
 #pragma once
 
 #include "../error.hpp"

@@ -3,7 +3,8 @@
 //
 // Builders for common convex polyhedra, each centred on its centre of mass: box, the thesis's
 // triangular prism (3.2.2.4), regular tetrahedron and regular n-sided prism. Sizes are in metres
-// and must be finite and > 0 (InvalidArgument otherwise). Prism axes follow CONVENTIONS.md: local y.
+// and must be finite and > 0 (InvalidArgument otherwise). Prism axes follow docs/conventions.md:
+// local y.
 #pragma once
 
 #include "../math/quat.hpp"

@@ -3,7 +3,7 @@
 //
 // Shape<T>: one type that holds any convex shape (a std::variant), so worlds and tools can store
 // mixed shapes. Pairs are dispatched statically: one std::visit over two shapes selects a
-// template instantiation whose support calls inline (STYLE.md, "static dispatch").
+// template instantiation whose support calls inline (docs/style.md, "Static dispatch").
 #pragma once
 
 #include "box.hpp"

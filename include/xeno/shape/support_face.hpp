@@ -3,9 +3,9 @@
 //
 // SupportFace<T>: the flat feature of a shape most aligned with a direction, as a convex polygon
 // in the shape's local frame. Contact manifolds clip two of these against each other
-// (SOLVER-NOTES.md 3.2). Vertices wind counter-clockwise seen from outside the shape (looking
-// against the face normal). A curved part answers with fewer vertices: 1 for a sphere or a rounded
-// end, 2 for a capsule's or a cylinder's side (a segment).
+// (docs/collision.md, "Contact manifolds by clipping"). Vertices wind counter-clockwise seen from
+// outside the shape (looking against the face normal). A curved part answers with fewer vertices: 1
+// for a sphere or a rounded end, 2 for a capsule's or a cylinder's side (a segment).
 #pragma once
 
 #include "../math/vec3.hpp"
