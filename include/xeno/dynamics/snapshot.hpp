@@ -201,6 +201,7 @@ struct SnapshotAccess {
     }
 
     static void restore(World<T>& world, const std::vector<std::uint8_t>& bytes) {
+        world.require_outside_filter("restore_snapshot");
         // Everything is read into a fresh world first: a bad buffer leaves `world` untouched.
         detail::ByteReader r(bytes);
         if (r.get<std::uint32_t>() != detail::kSnapshotMagic) detail::report_invalid("restore_snapshot", "not a xeno snapshot (bad header); size", static_cast<double>(bytes.size()));
@@ -271,6 +272,7 @@ struct SnapshotAccess {
         // Keep the target's callbacks; take everything else.
         out.listener_ = std::move(world.listener_);
         out.filter_ = std::move(world.filter_);
+        out.in_listener_ = world.in_listener_;  // restored from inside the listener: still inside it
         world = std::move(out);
     }
 };
