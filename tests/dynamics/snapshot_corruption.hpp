@@ -12,6 +12,7 @@
 
 #include <cstring>
 #include <limits>
+#include <utility>
 
 namespace xeno::test {
 
@@ -88,6 +89,40 @@ bool behaves(World<T>& w) {
     ok = ok && w.body_count() == count + 1 && w.contains(fresh);
     for (const BodyId id : living) ok = ok && w.contains(id) && id != fresh;
     return ok;
+}
+
+/// Changes byte i of a CorruptionScene snapshot to each of `changes(byte)` for every i in
+/// first, first + stride, …: each buffer must be rejected (InvalidArgument) or restore a world
+/// that behaves(). Returns {rejected, accepted}.
+template <class T>
+std::pair<std::size_t, std::size_t> sweep_corruptions(std::size_t first, std::size_t stride, int values) {
+    const CorruptionScene<T> s;
+    const std::vector<std::uint8_t> good = save_snapshot(s.w);
+    std::size_t rejected = 0, accepted = 0;
+    for (std::size_t i = first; i < good.size(); i += stride) {
+        for (int v = 0; v < values; ++v) {
+            std::vector<std::uint8_t> b = good;
+            switch (v) {  // the sign or top exponent bit, the lowest bit, every bit, 0 <-> 1
+                case 0: b[i] ^= 0x80; break;
+                case 1: b[i] ^= 0x01; break;
+                case 2: b[i] ^= 0xFF; break;
+                default: b[i] = b[i] == 0 ? 1 : 0; break;
+            }
+            if (b == good) continue;
+            World<T> w;
+            try {
+                restore_snapshot(w, b);
+            } catch (const InvalidArgument&) {
+                ++rejected;
+                continue;
+            }
+            ++accepted;
+            CAPTURE(i);
+            CAPTURE(v);
+            CHECK(behaves(w));
+        }
+    }
+    return {rejected, accepted};
 }
 
 }  // namespace xeno::test

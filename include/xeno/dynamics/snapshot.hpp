@@ -403,10 +403,11 @@ void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
         const bool isotropic = length(i[0] - Vec3<T>::unit_x() * mean) + length(i[1] - Vec3<T>::unit_y() * mean) +
                                    length(i[2] - Vec3<T>::unit_z() * mean) <= T(1e-6) * mean;
         if (isotropic != b.isotropic_) bad("a body's isotropic flag does not match its inertia; body slot");
-        // The accelerations the accumulated force and torque give must be finite, as the
-        // accumulating setters require.
-        if (!is_finite(b.force_ * b.inverse_mass_) || !is_finite(b.inverse_inertia_world() * b.torque_))
-            bad("a body's force or torque gives a non-finite acceleration; body slot");
+        // The accelerations the accumulated force and torque give stay within the range the step
+        // integrates (ScalarTraits<T>::max_size in m/s², rad/s²).
+        const T most = ScalarTraits<T>::max_size;
+        if (!(length(b.force_) * b.inverse_mass_ <= most) || !(length(b.inverse_inertia_world() * b.torque_) <= most))
+            bad("a body's force or torque gives an acceleration beyond max_size; body slot");
     } else {
         const Mat3<T>& i = b.inertia_local_;
         if (b.inverse_mass_ != T(0) || !(i[0] == Vec3<T>::zero() && i[1] == Vec3<T>::zero() && i[2] == Vec3<T>::zero()))
@@ -422,6 +423,20 @@ void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
 
 template <class T>
 void SnapshotAccess<T>::check_world(const World<T>& w) {
+    // Warm-start impulses are caches of the solver: each must give the bodies it acts on a
+    // velocity change within ScalarTraits<T>::max_size (m/s or rad/s), as a step's impulses do.
+    const T most = ScalarTraits<T>::max_size;
+    const auto inv_inertia = [&](std::uint32_t slot) {  // an upper bound of |I⁻¹| (1/(kg·m²))
+        const Mat3<T> i = w.bodies_[slot].inverse_inertia_local();
+        return max_component(abs(i[0])) + max_component(abs(i[1])) + max_component(abs(i[2]));
+    };
+    const auto reach = [&](std::uint32_t slot) {  // Δv at any point of the body per N·s (1/kg)
+        const Body<T>& b = w.bodies_[slot];
+        const T r = b.compound_ ? b.compound_->bounding_radius() : bounding_radius(*b.shape_);
+        return b.inverse_mass_ + inv_inertia(slot) * r * r;
+    };
+    const auto linear_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) { return std::abs(impulse) * (reach(a) + reach(b)) <= most; };
+    const auto angular_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) { return std::abs(impulse) * (inv_inertia(a) + inv_inertia(b)) <= most; };
     const std::size_t n = w.bodies_.size();
     if (w.bounds_.size() != n || w.previous_pose_.size() != n) detail::report_corrupt("inconsistent body tables; bodies", n);
     if (n >= BodyId::invalid_index) detail::report_corrupt("too many body slots", n);
@@ -466,8 +481,10 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
             const ContactPoint<T>& p = m.points[static_cast<std::size_t>(i)];
             ok = is_finite(p.local_a) && is_finite(p.local_b) && std::isfinite(p.depth) && std::isfinite(p.normal_impulse) &&
                  p.normal_impulse >= T(0) && std::isfinite(p.max_normal_impulse) && p.max_normal_impulse >= T(0) &&
-                 std::isfinite(p.step_impulse) && p.step_impulse >= T(0);
+                 std::isfinite(p.step_impulse) && p.step_impulse >= T(0) && linear_ok(p.normal_impulse, c.a.index, c.b.index) &&
+                 linear_ok(p.max_normal_impulse, c.a.index, c.b.index) && linear_ok(p.step_impulse, c.a.index, c.b.index);
         }
+        ok = ok && linear_ok(length(m.friction_impulse), c.a.index, c.b.index) && angular_ok(m.twist_impulse, c.a.index, c.b.index);
         if (!ok) detail::report_corrupt("a contact's normal, points, impulses or material are out of range; contact", k);
     }
     // Joints: types, bools, living distinct bodies, finite frames; free joints = dead joints.
@@ -487,7 +504,10 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
                   is_finite(j.local_ref_a) && is_finite(j.local_ref_b) && detail::unit_quat(j.relative_rotation) && std::isfinite(j.length) &&
                   std::isfinite(j.lower_angle) && std::isfinite(j.upper_angle) && j.lower_angle <= j.upper_angle &&
                   std::isfinite(j.motor_speed) && std::isfinite(j.max_motor_torque) && j.max_motor_torque >= T(0) &&
-                  is_finite(j.linear_impulse) && is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) && std::isfinite(j.motor_impulse);
+                  is_finite(j.linear_impulse) && is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) && std::isfinite(j.motor_impulse) &&
+                  linear_ok(length(j.linear_impulse), j.a.index, j.b.index) && angular_ok(length(j.angular_impulse), j.a.index, j.b.index) &&
+                  linear_ok(j.axial_impulse, j.a.index, j.b.index) && angular_ok(j.axial_impulse, j.a.index, j.b.index) &&
+                  angular_ok(j.motor_impulse, j.a.index, j.b.index);
         if (ok && j.type == JointType::hinge)
             ok = detail::unit_vector(j.local_axis_a) && detail::unit_vector(j.local_axis_b) && detail::unit_vector(j.local_ref_a) &&
                  detail::unit_vector(j.local_ref_b);
