@@ -327,9 +327,6 @@ template <class T>
 BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
                                   const BodyDef<T>& def) {
     const char* where = "World::create_body";
-    // Every check comes before the first change: a rejected body leaves the world as it was.
-    if (def.type != BodyType::static_body && def.type != BodyType::kinematic && def.type != BodyType::dynamic)
-        detail::report_invalid(where, "type must be static_body, kinematic or dynamic; type", static_cast<double>(static_cast<std::uint8_t>(def.type)));
     if (!is_finite(def.position)) detail::report_invalid(where, "position must be finite, x + y + z", static_cast<double>(def.position.x + def.position.y + def.position.z));
     if (!is_finite(def.orientation) || !(length_squared(def.orientation) > T(0)))
         detail::report_invalid(where, "orientation must be a finite, non-zero quaternion, w", static_cast<double>(def.orientation.w));
@@ -342,6 +339,10 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     const Vec3<T> centre = shape ? interior_point(*shape) : Vec3<T>::zero();
     if (shape && length(centre) > T(1e-4) * bounding_radius(*shape))
         detail::report_invalid(where, "the shape's centre of mass must be its local origin (make_convex_hull and ConvexPolyhedron::recentered() re-centre); distance (m)", static_cast<double>(length(centre)));
+
+    // Every check comes before the first change: a rejected body leaves the world as it was.
+    if (def.type != BodyType::static_body && def.type != BodyType::kinematic && def.type != BodyType::dynamic)
+        detail::report_invalid(where, "type must be static_body, kinematic or dynamic; type", static_cast<double>(static_cast<std::uint8_t>(def.type)));
 
     // Mass properties before a slot is taken, so a rejected body leaves no trace.
     MassProperties<T> mass;
@@ -423,12 +424,12 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
     require_outside_filter(where);
     const std::uint32_t ia = checked(def.a, where), ib = checked(def.b, where);
     if (ia == ib) detail::report_invalid(where, "a joint needs two different bodies; body index", static_cast<double>(ia));
+    if (def.type != JointType::ball && def.type != JointType::hinge && def.type != JointType::fixed && def.type != JointType::distance)
+        detail::report_invalid(where, "type must be ball, hinge, fixed or distance; type", static_cast<double>(static_cast<std::uint8_t>(def.type)));
     const Body<T>& a = bodies_[ia];
     const Body<T>& b = bodies_[ib];
     if (a.type_ == BodyType::static_body && b.type_ == BodyType::static_body)
         detail::report_invalid(where, "a joint between two static bodies does nothing; body index", static_cast<double>(ib));
-    if (def.type != JointType::ball && def.type != JointType::hinge && def.type != JointType::fixed && def.type != JointType::distance)
-        detail::report_invalid(where, "type must be ball, hinge, fixed or distance; type", static_cast<double>(static_cast<std::uint8_t>(def.type)));
     if (!is_finite(def.anchor_a) || !is_finite(def.anchor_b))
         detail::report_invalid(where, "anchors must be finite, anchor_a.x", static_cast<double>(def.anchor_a.x));
     Joint<T> j;
