@@ -301,22 +301,40 @@ void Body<T>::set_gravity_scale(T scale) {
     wake();
 }
 
+namespace detail {
+/// Checks the mass properties of a dynamic body whose shape reaches `radius` from its centre:
+/// mass finite and > 0, centre at the origin, inertia finite, symmetric (to round-off) and
+/// positive definite with a finite inverse. Reports (InvalidArgument) naming `where`; changes
+/// nothing, so callers check before they take any state (World::create_body does).
+template <class T>
+void check_mass_properties(const MassProperties<T>& m, T radius, const char* where) {
+    require_positive(m.mass, where, "mass");
+    if (!is_finite(m.center) || length(m.center) > T(1e-6) * (T(1) + radius))
+        report_invalid(where, "center must be 0 (the body's position is its centre of mass); |center|", static_cast<double>(length(m.center)));
+    // Symmetric (up to round-off, as R I Rᵀ leaves it) and positive definite by Sylvester's
+    // criterion: the leading principal minors are positive. The minors are taken of the inertia
+    // divided by its largest diagonal entry, so tiny bodies (a 0.1 mm float sphere, I ~ 1e-17,
+    // det ~ 1e-51) are not rejected for an underflowing determinant.
+    const Mat3<T>& i = m.inertia;
+    const T largest = std::max(i[0].x, std::max(i[1].y, i[2].z));
+    bool ok = is_finite(i) && largest > T(0) && std::isfinite(largest);
+    if (ok) {
+        const Mat3<T> n{i[0] / largest, i[1] / largest, i[2] / largest};
+        const T asymmetry = std::max(std::abs(n[0].y - n[1].x), std::max(std::abs(n[0].z - n[2].x), std::abs(n[1].z - n[2].y)));
+        const T minor2 = n[0].x * n[1].y - n[0].y * n[1].x;
+        const std::optional<Mat3<T>> inv = try_inverse(i);
+        ok = asymmetry <= ScalarTraits<T>::relative_tolerance * std::abs(trace(n)) && n[0].x > T(0) && minor2 > T(0) &&
+             determinant(n) > T(0) && inv && is_finite(*inv);
+    }
+    if (!ok) report_invalid(where, "inertia must be finite, symmetric and positive definite (with a finite inverse); Ixx", static_cast<double>(i[0].x));
+}
+}  // namespace detail
+
 template <class T>
 void Body<T>::set_mass_properties(const MassProperties<T>& m) {
     const char* where = "Body::set_mass_properties";
     if (type_ != BodyType::dynamic) detail::report_invalid(where, "only dynamic bodies have mass; body type", static_cast<double>(type_));
-    detail::require_positive(m.mass, where, "mass");
-    if (length(m.center) > T(1e-6) * (T(1) + (compound_ ? compound_->bounding_radius() : bounding_radius(*shape_))))
-        detail::report_invalid(where, "center must be 0 (the body's position is its centre of mass); |center|", static_cast<double>(length(m.center)));
-    // Symmetric (up to round-off, as R I Rᵀ leaves it) and positive definite by Sylvester's criterion:
-    // the leading principal minors are positive.
-    const Mat3<T>& i = m.inertia;
-    const T asymmetry = std::max(std::abs(i[0].y - i[1].x), std::max(std::abs(i[0].z - i[2].x), std::abs(i[1].z - i[2].y)));
-    const bool symmetric = asymmetry <= ScalarTraits<T>::relative_tolerance * std::abs(trace(i));
-    const T minor2 = i[0].x * i[1].y - i[0].y * i[1].x;
-    const std::optional<Mat3<T>> inv = try_inverse(i);
-    if (!is_finite(i) || !inv || !symmetric || !(i[0].x > T(0)) || !(minor2 > T(0)) || !(determinant(i) > T(0)))
-        detail::report_invalid(where, "inertia must be finite, symmetric and positive definite; Ixx", static_cast<double>(i[0].x));
+    detail::check_mass_properties(m, compound_ ? compound_->bounding_radius() : bounding_radius(*shape_), where);
     inverse_mass_ = T(1) / m.mass;
     inertia_local_ = m.inertia;
     const T mean = trace(m.inertia) / T(3);

@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <array>
 #include <map>
 #include <type_traits>
 #include <vector>
@@ -73,12 +74,51 @@ public:
         for (std::uint64_t i = 0; i < n; ++i) out.push_back(get<V>());
         return out;
     }
+    /// A bool written as one byte: 0 or 1, anything else is rejected (loading it as a bool would
+    /// be undefined behaviour).
+    bool get_bool() {
+        const std::uint8_t b = get<std::uint8_t>();
+        if (b > 1) report_invalid("restore_snapshot", "a bool byte is neither 0 nor 1; byte", b);
+        return b == 1;
+    }
     bool done() const { return offset_ == bytes_.size(); }
 
 private:
     const std::vector<std::uint8_t>& bytes_;
     std::size_t offset_ = 0;
 };
+
+/// The byte of a bool stored inside a struct read byte for byte, inspected without loading it as
+/// a bool (a byte other than 0 or 1 is not a bool value).
+template <class B>
+bool raw_bool_ok(const B& b) {
+    static_assert(sizeof(B) == 1, "a bool is one byte here");
+    std::uint8_t u;
+    std::memcpy(&u, &b, 1);
+    return u <= 1;
+}
+
+/// The underlying value of an enum stored inside a struct read byte for byte.
+template <class E>
+std::underlying_type_t<E> raw_enum(const E& e) {
+    std::underlying_type_t<E> u;
+    std::memcpy(&u, &e, sizeof u);
+    return u;
+}
+
+/// |q|² within the relative tolerance of 1: what normalising leaves.
+template <class T>
+bool unit_quat(const Quat<T>& q) {
+    return is_finite(q) && std::abs(length_squared(q) - T(1)) <= ScalarTraits<T>::relative_tolerance;
+}
+template <class T>
+bool unit_vector(const Vec3<T>& v) {
+    return is_finite(v) && std::abs(length_squared(v) - T(1)) <= ScalarTraits<T>::relative_tolerance;
+}
+template <class T>
+bool box_ok(const Aabb<T>& b) {
+    return is_finite(b.min) && is_finite(b.max) && b.min.x <= b.max.x && b.min.y <= b.max.y && b.min.z <= b.max.z;
+}
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
 constexpr std::uint32_t kSnapshotVersion = 1;
@@ -150,6 +190,15 @@ Shape<T> read_shape(ByteReader& r) {
 /// Friend of World and Body: reads and writes their private state.
 template <class T>
 struct SnapshotAccess {
+    // restore() checks every field it reads: what the doors of the world would have let in
+    // (ranges, finiteness, enum values, bools), and the cross-references the step relies on
+    // (free slots are exactly the dead slots, contacts and joints join living bodies, contacts are
+    // sorted as the narrow phase merges them). A corrupt buffer is rejected, never simulated.
+    static void check_settings(const WorldSettings<T>& s);
+    static void check_compound(const Compound<T>& c);
+    static void check_body(const World<T>& w, std::uint32_t slot);
+    static void check_world(const World<T>& w);
+
     static std::vector<std::uint8_t> save(const World<T>& world) {
         detail::ByteWriter w;
         w.put(detail::kSnapshotMagic);
@@ -201,6 +250,7 @@ struct SnapshotAccess {
     }
 
     static void restore(World<T>& world, const std::vector<std::uint8_t>& bytes) {
+        world.require_outside_filter("restore_snapshot");
         // Everything is read into a fresh world first: a bad buffer leaves `world` untouched.
         detail::ByteReader r(bytes);
         if (r.get<std::uint32_t>() != detail::kSnapshotMagic) detail::report_invalid("restore_snapshot", "not a xeno snapshot (bad header); size", static_cast<double>(bytes.size()));
@@ -208,8 +258,12 @@ struct SnapshotAccess {
         if (version != detail::kSnapshotVersion) detail::report_invalid("restore_snapshot", "unsupported snapshot version", version);
         const std::uint32_t scalar = r.get<std::uint32_t>();
         if (scalar != sizeof(T)) detail::report_invalid("restore_snapshot", "the snapshot is of another scalar type; its scalar size", scalar);
-        World<T> out(r.get<WorldSettings<T>>());
+        const WorldSettings<T> settings = r.get<WorldSettings<T>>();
+        check_settings(settings);
+        World<T> out(settings);  // the constructor validates the settings as set_settings does
         out.accumulator_ = r.get<T>();
+        if (!(std::isfinite(out.accumulator_) && out.accumulator_ >= T(0)))
+            detail::report_invalid("restore_snapshot", "the accumulator must be finite and >= 0", static_cast<double>(out.accumulator_));
         std::vector<std::shared_ptr<const Shape<T>>> shapes(static_cast<std::size_t>(std::min<std::uint64_t>(r.get<std::uint64_t>(), bytes.size())));
         for (auto& s : shapes) s = std::make_shared<const Shape<T>>(detail::read_shape<T>(r));
         std::vector<std::shared_ptr<const Compound<T>>> compounds(static_cast<std::size_t>(std::min<std::uint64_t>(r.get<std::uint64_t>(), bytes.size())));
@@ -223,18 +277,20 @@ struct SnapshotAccess {
             compound.shift_ = r.get<Vec3<T>>(), compound.unit_mass_ = r.get<MassProperties<T>>();
             compound.bounds_ = r.get<Aabb<T>>(), compound.radius_ = r.get<T>();
             if (compound.children_.empty()) detail::report_invalid("restore_snapshot", "a compound without parts", 0.0);
+            check_compound(compound);
             c = std::make_shared<const Compound<T>>(std::move(compound));
         }
         const std::uint64_t body_count = r.get<std::uint64_t>();
         if (body_count > bytes.size()) detail::report_invalid("restore_snapshot", "body count runs past the buffer", static_cast<double>(body_count));
         out.bodies_.resize(static_cast<std::size_t>(body_count));
         for (Body<T>& b : out.bodies_) {
-            b.alive_ = r.get<bool>();
+            b.alive_ = r.get_bool();
             b.generation_ = r.get<std::uint32_t>();
             if (!b.alive_) continue;
             const std::uint32_t shape = r.get<std::uint32_t>(), compound = r.get<std::uint32_t>();
             if (shape != ~std::uint32_t(0)) {
                 if (shape >= shapes.size()) detail::report_invalid("restore_snapshot", "a body refers to a missing shape", shape);
+                if (compound != ~std::uint32_t(0)) detail::report_invalid("restore_snapshot", "a body refers to both a shape and a compound", compound);
                 b.shape_ = shapes[shape];
             } else {
                 if (compound >= compounds.size()) detail::report_invalid("restore_snapshot", "a body refers to a missing compound", compound);
@@ -246,9 +302,11 @@ struct SnapshotAccess {
             b.inverse_mass_ = r.get<T>(), b.material_ = r.get<Material<T>>();
             b.linear_damping_ = r.get<T>(), b.angular_damping_ = r.get<T>(), b.gravity_scale_ = r.get<T>(), b.sleep_time_ = r.get<T>();
             b.user_data_ = r.get<std::uint64_t>(), b.layer_ = r.get<std::uint32_t>(), b.mask_ = r.get<std::uint32_t>();
-            b.type_ = r.get<BodyType>();
-            b.awake_ = r.get<bool>(), b.allow_sleep_ = r.get<bool>(), b.fast_ = r.get<bool>(), b.sensor_ = r.get<bool>();
-            b.isotropic_ = r.get<bool>(), b.moved_ = r.get<bool>();
+            const std::uint8_t type = r.get<std::uint8_t>();
+            if (type > static_cast<std::uint8_t>(BodyType::dynamic)) detail::report_invalid("restore_snapshot", "a body's type is not a BodyType", type);
+            b.type_ = static_cast<BodyType>(type);
+            b.awake_ = r.get_bool(), b.allow_sleep_ = r.get_bool(), b.fast_ = r.get_bool(), b.sensor_ = r.get_bool();
+            b.isotropic_ = r.get_bool(), b.moved_ = r.get_bool();
         }
         out.free_slots_ = r.get_vector<std::uint32_t>();
         out.bounds_ = r.get_vector<Aabb<T>>();
@@ -258,22 +316,220 @@ struct SnapshotAccess {
         out.free_joints_ = r.get_vector<std::uint32_t>();
         out.events_pending_ = r.get_vector<ContactEvent<T>>();
         if (!r.done()) detail::report_invalid("restore_snapshot", "bytes left over after the world (not a snapshot of this version?); size", static_cast<double>(bytes.size()));
-        if (out.bounds_.size() != out.bodies_.size() || out.previous_pose_.size() != out.bodies_.size())
-            detail::report_invalid("restore_snapshot", "inconsistent body tables; bodies", static_cast<double>(out.bodies_.size()));
-        for (const Contact<T>& c : out.contacts_)
-            if (c.a.index >= out.bodies_.size() || c.b.index >= out.bodies_.size() || !out.bodies_[c.a.index].alive_ || !out.bodies_[c.b.index].alive_)
-                detail::report_invalid("restore_snapshot", "a contact refers to a missing body; index", static_cast<double>(c.a.index));
-        for (const Joint<T>& j : out.joints_)
-            if (j.alive && (j.a.index >= out.bodies_.size() || j.b.index >= out.bodies_.size()))
-                detail::report_invalid("restore_snapshot", "a joint refers to a missing body; index", static_cast<double>(j.a.index));
+        check_world(out);
         out.solver_index_.assign(out.bodies_.size(), 0);
         out.rebuild_joint_pairs();
         // Keep the target's callbacks; take everything else.
         out.listener_ = std::move(world.listener_);
         out.filter_ = std::move(world.filter_);
+        out.in_listener_ = world.in_listener_;  // restored from inside the listener: still inside it
         world = std::move(out);
     }
 };
+
+namespace detail {
+/// "restore_snapshot: <what>; <name> <index>" for a field that fails its check.
+[[noreturn]] inline void report_corrupt(const char* what, std::size_t index) {
+    report_invalid("restore_snapshot", what, static_cast<double>(index));
+}
+}  // namespace detail
+
+template <class T>
+void SnapshotAccess<T>::check_settings(const WorldSettings<T>& s) {
+    // Bools and enums first, by their bytes; then the same validation as set_settings.
+    if (!detail::raw_bool_ok(s.warm_starting) || !detail::raw_bool_ok(s.allow_sleeping))
+        detail::report_invalid("restore_snapshot", "a settings bool byte is neither 0 nor 1", 0.0);
+    const auto solver = detail::raw_enum(s.solver);
+    if (solver != detail::raw_enum(SolverMode::soft_step) && solver != detail::raw_enum(SolverMode::baumgarte))
+        detail::report_invalid("restore_snapshot", "settings.solver is not a SolverMode", static_cast<double>(solver));
+    const auto broad = detail::raw_enum(s.broad_phase);
+    if (broad != detail::raw_enum(BroadPhaseKind::brute_force) && broad != detail::raw_enum(BroadPhaseKind::sweep_and_prune) &&
+        broad != detail::raw_enum(BroadPhaseKind::aabb_tree))
+        detail::report_invalid("restore_snapshot", "settings.broad_phase is not a BroadPhaseKind", static_cast<double>(broad));
+    // Counts that would make a step take hours: the settings' own validation bounds them too.
+    constexpr int most_substeps = 64, most_iterations = 256, most_joint_iterations = 64, most_steps_per_update = 1000;
+    if (s.substeps > most_substeps) detail::report_invalid("restore_snapshot", "settings.substeps above 64", s.substeps);
+    if (s.velocity_iterations > most_iterations) detail::report_invalid("restore_snapshot", "settings.velocity_iterations above 256", s.velocity_iterations);
+    if (s.relax_iterations > most_iterations) detail::report_invalid("restore_snapshot", "settings.relax_iterations above 256", s.relax_iterations);
+    if (s.joint_iterations > most_joint_iterations) detail::report_invalid("restore_snapshot", "settings.joint_iterations above 64", s.joint_iterations);
+    if (s.max_steps_per_update > most_steps_per_update)
+        detail::report_invalid("restore_snapshot", "settings.max_steps_per_update above 1000", s.max_steps_per_update);
+    detail::validate(s);
+}
+
+template <class T>
+void SnapshotAccess<T>::check_compound(const Compound<T>& c) {
+    // The children were checked by their shapes' constructors; the derived fields must be what
+    // the Compound constructor computes from them (rebuilt here: the children are centred, so the
+    // rebuilt compound agrees to round-off).
+    for (std::size_t i = 0; i < c.children_.size(); ++i)
+        if (!is_finite(c.children_[i].local.position) || !detail::unit_quat(c.children_[i].local.orientation))
+            detail::report_corrupt("a compound child's transform is not finite with a unit orientation; child", i);
+    const Compound<T> ref(c.children_);
+    const T r = ref.bounding_radius();
+    const T tol = T(1e-3);
+    const MassProperties<T>& m = c.unit_mass_;
+    bool ok = is_finite(c.shift_) && std::isfinite(c.radius_) && detail::box_ok(c.bounds_) && std::isfinite(m.mass) &&
+              is_finite(m.center) && is_finite(m.inertia);
+    ok = ok && std::abs(c.radius_ - r) <= tol * r && length(ref.shift()) <= tol * r && length(m.center) <= tol * r &&
+         length(c.bounds_.min - ref.local_bounds().min) <= tol * r && length(c.bounds_.max - ref.local_bounds().max) <= tol * r &&
+         std::abs(m.mass - ref.unit_mass_.mass) <= tol * ref.unit_mass_.mass;
+    const T scale = trace(ref.unit_mass_.inertia);
+    for (int i = 0; ok && i < 3; ++i) ok = length(m.inertia[i] - ref.unit_mass_.inertia[i]) <= tol * scale;
+    if (!ok) detail::report_invalid("restore_snapshot", "a compound's mass, bounds or radius do not match its children; radius", static_cast<double>(c.radius_));
+}
+
+template <class T>
+void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
+    const Body<T>& b = w.bodies_[slot];
+    const auto bad = [slot](const char* what) { detail::report_corrupt(what, slot); };
+    const T radius = b.compound_ ? b.compound_->bounding_radius() : bounding_radius(*b.shape_);
+    if (b.shape_ && length(interior_point(*b.shape_)) > T(1e-4) * radius) bad("a body's shape is not centred on its centre of mass; body slot");
+    if (!is_finite(b.position_) || !detail::unit_quat(b.orientation_)) bad("a body's pose is not finite with a unit orientation; body slot");
+    if (!is_finite(b.linear_velocity_) || !is_finite(b.angular_velocity_) || !is_finite(b.force_) || !is_finite(b.torque_))
+        bad("a body's velocity, force or torque is not finite; body slot");
+    if (!(b.material_.friction >= T(0) && std::isfinite(b.material_.friction) && b.material_.restitution >= T(0) && b.material_.restitution <= T(1)))
+        bad("a body's material is out of range; body slot");
+    if (!(std::isfinite(b.linear_damping_) && b.linear_damping_ >= T(0) && std::isfinite(b.angular_damping_) && b.angular_damping_ >= T(0)))
+        bad("a body's damping is not finite and >= 0; body slot");
+    if (!std::isfinite(b.gravity_scale_) || !(std::isfinite(b.sleep_time_) && b.sleep_time_ >= T(0)))
+        bad("a body's gravity scale or sleep time is out of range; body slot");
+    if (b.type_ == BodyType::dynamic) {
+        if (!(std::isfinite(b.inverse_mass_) && b.inverse_mass_ > T(0) && std::isfinite(T(1) / b.inverse_mass_)))
+            bad("a dynamic body's inverse mass is not finite and > 0; body slot");
+        detail::check_mass_properties(MassProperties<T>{T(1) / b.inverse_mass_, Vec3<T>::zero(), b.inertia_local_}, radius, "restore_snapshot");
+        const Mat3<T>& i = b.inertia_local_;
+        const T mean = trace(i) / T(3);
+        const bool isotropic = length(i[0] - Vec3<T>::unit_x() * mean) + length(i[1] - Vec3<T>::unit_y() * mean) +
+                                   length(i[2] - Vec3<T>::unit_z() * mean) <= T(1e-6) * mean;
+        if (isotropic != b.isotropic_) bad("a body's isotropic flag does not match its inertia; body slot");
+        // The accelerations the accumulated force and torque give stay within the range the step
+        // integrates (ScalarTraits<T>::max_size in m/s², rad/s²).
+        const T most = ScalarTraits<T>::max_size;
+        if (!(length(b.force_) * b.inverse_mass_ <= most) || !(length(b.inverse_inertia_world() * b.torque_) <= most))
+            bad("a body's force or torque gives an acceleration beyond max_size; body slot");
+    } else {
+        const Mat3<T>& i = b.inertia_local_;
+        if (b.inverse_mass_ != T(0) || !(i[0] == Vec3<T>::zero() && i[1] == Vec3<T>::zero() && i[2] == Vec3<T>::zero()))
+            bad("a static or kinematic body has mass; body slot");
+        if (b.force_ != Vec3<T>::zero() || b.torque_ != Vec3<T>::zero()) bad("a static or kinematic body has a force; body slot");
+        if (b.type_ == BodyType::static_body && (b.linear_velocity_ != Vec3<T>::zero() || b.angular_velocity_ != Vec3<T>::zero()))
+            bad("a static body moves; body slot");
+    }
+    if (!detail::box_ok(w.bounds_[slot])) bad("a body's broad-phase box is not finite with min <= max; body slot");
+    if (!is_finite(w.previous_pose_[slot].position) || !detail::unit_quat(w.previous_pose_[slot].orientation))
+        bad("a body's previous pose is not finite with a unit orientation; body slot");
+}
+
+template <class T>
+void SnapshotAccess<T>::check_world(const World<T>& w) {
+    // Warm-start impulses are caches of the solver: each must give the bodies it acts on a
+    // velocity change within ScalarTraits<T>::max_size (m/s or rad/s), as a step's impulses do.
+    const T most = ScalarTraits<T>::max_size;
+    const auto inv_inertia = [&](std::uint32_t slot) {  // an upper bound of |I⁻¹| (1/(kg·m²))
+        const Mat3<T> i = w.bodies_[slot].inverse_inertia_local();
+        return max_component(abs(i[0])) + max_component(abs(i[1])) + max_component(abs(i[2]));
+    };
+    const auto reach = [&](std::uint32_t slot) {  // Δv at any point of the body per N·s (1/kg)
+        const Body<T>& b = w.bodies_[slot];
+        const T r = b.compound_ ? b.compound_->bounding_radius() : bounding_radius(*b.shape_);
+        return b.inverse_mass_ + inv_inertia(slot) * r * r;
+    };
+    const auto linear_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) { return std::abs(impulse) * (reach(a) + reach(b)) <= most; };
+    const auto angular_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) { return std::abs(impulse) * (inv_inertia(a) + inv_inertia(b)) <= most; };
+    const std::size_t n = w.bodies_.size();
+    if (w.bounds_.size() != n || w.previous_pose_.size() != n) detail::report_corrupt("inconsistent body tables; bodies", n);
+    if (n >= BodyId::invalid_index) detail::report_corrupt("too many body slots", n);
+    // Free slots: exactly the dead slots, each once (create_body takes them without looking).
+    std::vector<std::uint8_t> listed(n, 0);
+    for (const std::uint32_t f : w.free_slots_) {
+        if (f >= n) detail::report_corrupt("a free slot is out of range; slot", f);
+        if (w.bodies_[f].alive_) detail::report_corrupt("a free slot holds a living body; slot", f);
+        if (listed[f]++) detail::report_corrupt("a free slot is listed twice; slot", f);
+    }
+    const Aabb<T> empty{};
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (w.bodies_[i].alive_) {
+            check_body(w, i);
+        } else {
+            if (!listed[i]) detail::report_corrupt("a dead slot is not listed as free; slot", i);
+            // A dead slot's box stays empty so the broad phase never pairs it.
+            if (std::memcmp(&w.bounds_[i], &empty, sizeof empty) != 0) detail::report_corrupt("a dead slot has a broad-phase box; slot", i);
+        }
+    }
+    const auto living = [&](BodyId id) { return id.index < n && w.bodies_[id.index].alive_ && w.bodies_[id.index].generation_ == id.generation; };
+    // Contacts: between living bodies, a < b, sorted by (a, b, child a, child b) without repeats
+    // (the narrow phase merges them with the sorted broad-phase pairs), 0 … 4 finite points.
+    for (std::size_t k = 0; k < w.contacts_.size(); ++k) {
+        const Contact<T>& c = w.contacts_[k];
+        if (!detail::raw_bool_ok(c.touching) || !detail::raw_bool_ok(c.was_touching) || !detail::raw_bool_ok(c.sensor))
+            detail::report_corrupt("a contact's bool byte is neither 0 nor 1; contact", k);
+        if (!living(c.a) || !living(c.b) || !(c.a.index < c.b.index)) detail::report_corrupt("a contact does not join two living bodies a < b; contact", k);
+        if (c.child_a >= w.bodies_[c.a.index].child_count() || c.child_b >= w.bodies_[c.b.index].child_count())
+            detail::report_corrupt("a contact's part index is out of range; contact", k);
+        if (k > 0) {
+            const Contact<T>& p = w.contacts_[k - 1];
+            const auto key = [](const Contact<T>& x) { return std::array<std::uint32_t, 4>{x.a.index, x.b.index, x.child_a, x.child_b}; };
+            if (!(key(p) < key(c))) detail::report_corrupt("contacts are not sorted by body pair and part; contact", k);
+        }
+        const Manifold<T>& m = c.manifold;
+        if (m.count < 0 || m.count > Manifold<T>::capacity) detail::report_corrupt("a manifold's point count is not 0 … 4; contact", k);
+        bool ok = is_finite(m.normal) && (m.count == 0 || detail::unit_vector(m.normal)) && is_finite(m.friction_impulse) &&
+                  std::isfinite(m.twist_impulse) && std::isfinite(c.friction) && c.friction >= T(0) && c.restitution >= T(0) &&
+                  c.restitution <= T(1);
+        for (int i = 0; ok && i < m.count; ++i) {
+            const ContactPoint<T>& p = m.points[static_cast<std::size_t>(i)];
+            ok = is_finite(p.local_a) && is_finite(p.local_b) && std::isfinite(p.depth) && std::isfinite(p.normal_impulse) &&
+                 p.normal_impulse >= T(0) && std::isfinite(p.max_normal_impulse) && p.max_normal_impulse >= T(0) &&
+                 std::isfinite(p.step_impulse) && p.step_impulse >= T(0) && linear_ok(p.normal_impulse, c.a.index, c.b.index) &&
+                 linear_ok(p.max_normal_impulse, c.a.index, c.b.index) && linear_ok(p.step_impulse, c.a.index, c.b.index);
+        }
+        ok = ok && linear_ok(length(m.friction_impulse), c.a.index, c.b.index) && angular_ok(m.twist_impulse, c.a.index, c.b.index);
+        if (!ok) detail::report_corrupt("a contact's normal, points, impulses or material are out of range; contact", k);
+    }
+    // Joints: types, bools, living distinct bodies, finite frames; free joints = dead joints.
+    const std::size_t nj = w.joints_.size();
+    if (nj >= JointId::invalid_index) detail::report_corrupt("too many joint slots", nj);
+    for (std::size_t k = 0; k < nj; ++k) {
+        const Joint<T>& j = w.joints_[k];
+        if (!detail::raw_bool_ok(j.alive) || !detail::raw_bool_ok(j.enable_limit) || !detail::raw_bool_ok(j.enable_motor) ||
+            !detail::raw_bool_ok(j.collide_connected))
+            detail::report_corrupt("a joint's bool byte is neither 0 nor 1; joint", k);
+        if (detail::raw_enum(j.type) > detail::raw_enum(JointType::distance)) detail::report_corrupt("a joint's type is not a JointType; joint", k);
+        if (!j.alive) continue;
+        if (!living(j.a) || !living(j.b) || j.a.index == j.b.index) detail::report_corrupt("a joint does not join two living bodies; joint", k);
+        if (w.bodies_[j.a.index].type_ == BodyType::static_body && w.bodies_[j.b.index].type_ == BodyType::static_body)
+            detail::report_corrupt("a joint joins two static bodies; joint", k);
+        bool ok = is_finite(j.local_anchor_a) && is_finite(j.local_anchor_b) && is_finite(j.local_axis_a) && is_finite(j.local_axis_b) &&
+                  is_finite(j.local_ref_a) && is_finite(j.local_ref_b) && detail::unit_quat(j.relative_rotation) && std::isfinite(j.length) &&
+                  std::isfinite(j.lower_angle) && std::isfinite(j.upper_angle) && j.lower_angle <= j.upper_angle &&
+                  std::isfinite(j.motor_speed) && std::isfinite(j.max_motor_torque) && j.max_motor_torque >= T(0) &&
+                  is_finite(j.linear_impulse) && is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) && std::isfinite(j.motor_impulse) &&
+                  linear_ok(length(j.linear_impulse), j.a.index, j.b.index) && angular_ok(length(j.angular_impulse), j.a.index, j.b.index) &&
+                  linear_ok(j.axial_impulse, j.a.index, j.b.index) && angular_ok(j.axial_impulse, j.a.index, j.b.index) &&
+                  angular_ok(j.motor_impulse, j.a.index, j.b.index);
+        if (ok && j.type == JointType::hinge)
+            ok = detail::unit_vector(j.local_axis_a) && detail::unit_vector(j.local_axis_b) && detail::unit_vector(j.local_ref_a) &&
+                 detail::unit_vector(j.local_ref_b);
+        if (!ok) detail::report_corrupt("a joint's frames, limits or impulses are out of range; joint", k);
+    }
+    std::vector<std::uint8_t> free_joint(nj, 0);
+    for (const std::uint32_t f : w.free_joints_) {
+        if (f >= nj || w.joints_[f].alive || free_joint[f]++) detail::report_corrupt("a free joint slot is out of range, alive or listed twice; slot", f);
+    }
+    for (std::size_t k = 0; k < nj; ++k)
+        if (!w.joints_[k].alive && !free_joint[k]) detail::report_corrupt("a dead joint slot is not listed as free; slot", k);
+    // Pending events (contacts that ended since the last step): handles may be stale by design.
+    for (std::size_t k = 0; k < w.events_pending_.size(); ++k) {
+        const ContactEvent<T>& e = w.events_pending_[k];
+        const auto kind = detail::raw_enum(e.kind);
+        if (!detail::raw_bool_ok(e.sensor) || kind < detail::raw_enum(ContactEventKind::began) || kind > detail::raw_enum(ContactEventKind::ended))
+            detail::report_corrupt("a pending event's kind or bool byte is out of range; event", k);
+        bool ok = e.count >= 0 && e.count <= 4 && is_finite(e.normal) && std::isfinite(e.impulse);
+        for (const Vec3<T>& p : e.points) ok = ok && is_finite(p);
+        if (!ok) detail::report_corrupt("a pending event's normal, points or impulse are out of range; event", k);
+    }
+}
 
 template <class T>
 std::vector<std::uint8_t> save_snapshot(const World<T>& world) {

@@ -98,6 +98,7 @@ public:
     const WorldSettings<T>& settings() const { return settings_; }
     /// Replaces the settings (checked, InvalidArgument on bad values).
     void set_settings(const WorldSettings<T>& s) {
+        require_outside_filter("World::set_settings");
         detail::validate(s);
         settings_ = s;
     }
@@ -169,10 +170,17 @@ public:
     const StepStats& last_step_stats() const { return stats_; }
     /// Contact events of the last step (began, persisted, ended), sorted by body pair.
     const std::vector<ContactEvent<T>>& contact_events() const { return events_; }
-    /// Called after every step once per event of contact_events(); the world may be changed
-    /// from inside it (bodies created or destroyed): the events are delivered from a copy.
+    /// Called after every step once per event of contact_events(), in that order. The listener
+    /// may change the world (create or destroy bodies and joints, teleport, change settings,
+    /// restore a snapshot): the events are delivered from a copy, and a handle in a later event
+    /// may be stale by then (check contains()). It may replace or clear itself: the call in
+    /// progress finishes on the listener it started with (kept alive until it returns), and the
+    /// remaining events of the step go to the new listener (none when cleared). It may not step
+    /// the world: step() and update() from inside it are rejected (InvalidArgument). Pass {} to
+    /// remove it.
     void set_contact_listener(std::function<void(World&, const ContactEvent<T>&)> listener) {
-        listener_ = std::move(listener);
+        require_outside_filter("World::set_contact_listener");
+        listener_ = listener ? std::make_shared<const Listener>(std::move(listener)) : nullptr;
     }
     /// The nearest body the ray hits within its length, if any (every shape type, solid: a ray
     /// starting inside a body hits it at distance 0). Bodies whose broad-phase box the ray
@@ -185,9 +193,19 @@ public:
     /// The bodies whose (tight) bounding box overlaps the box.
     std::vector<BodyId> query_aabb(const Aabb<T>& box) const;
 
-    /// A user veto on pairs: called for every pair whose boxes overlap (and that layers and
-    /// masks allow); returning false means the two never touch. Pass {} to remove it.
-    void set_contact_filter(std::function<bool(BodyId, BodyId)> filter) { filter_ = std::move(filter); }
+    /// A user veto on pairs: called during step() for every pair whose boxes overlap (and that
+    /// layers and masks allow); returning false means the two never touch. Pass {} to remove it.
+    /// The filter must not change the world: it runs while the step walks the bodies and their
+    /// contacts, so every mutating World call made from inside it (create_body, destroy_body,
+    /// set_transform, create_joint, destroy_joint, set_hinge_motor, set_settings, set_gravity,
+    /// reserve, set_contact_filter, set_contact_listener, step, update, restore_snapshot) is
+    /// rejected with InvalidArgument and changes nothing. Reading the world is fine. Body
+    /// setters are not checked (they touch no table the step walks) but the filter should not
+    /// call them either: decide from the bodies as they are, and change the world after step().
+    void set_contact_filter(std::function<bool(BodyId, BodyId)> filter) {
+        require_outside_filter("World::set_contact_filter");
+        filter_ = std::move(filter);
+    }
 
     /// Advances exactly one step of dt seconds (dt finite and > 0, else InvalidArgument).
     void step(T dt);
@@ -203,6 +221,34 @@ public:
 
 private:
     friend struct SnapshotAccess<T>;
+    using Listener = std::function<void(World&, const ContactEvent<T>&)>;
+    /// Sets a flag for the lifetime of the object, clearing it on the way out (also by exception).
+    struct FlagScope {
+        bool& flag;
+        explicit FlagScope(bool& f) : flag(f) { flag = true; }
+        ~FlagScope() { flag = false; }
+        FlagScope(const FlagScope&) = delete;
+        FlagScope& operator=(const FlagScope&) = delete;
+    };
+    /// The door of every mutating call: rejected while the contact filter runs.
+    void require_outside_filter(const char* where) const {
+        if (in_filter_)
+            detail::report_invalid(std::string("xeno: ") + where +
+                                   ": the world may not be changed from inside the contact filter (change it after step())");
+    }
+    /// step() and update(): rejected inside the filter and inside the contact listener.
+    void require_outside_callbacks(const char* where) const {
+        require_outside_filter(where);
+        if (in_listener_)
+            detail::report_invalid(std::string("xeno: ") + where +
+                                   ": the world may not be stepped from inside the contact listener (step after it returns)");
+    }
+    /// The user filter's verdict on a pair (true without a filter), with mutations locked out.
+    bool filter_allows(std::uint32_t a, std::uint32_t b) {
+        if (!filter_) return true;
+        const FlagScope scope(in_filter_);
+        return filter_(id_of(a), id_of(b));
+    }
     std::uint32_t checked(BodyId id, const char* where) const {
         if (!id.valid()) detail::report_invalid(where, "invalid body handle (default-constructed BodyId), index", -1.0);
         if (!contains(id))
@@ -262,7 +308,7 @@ private:
     std::vector<std::uint64_t> unconnected_pairs_;  ///< sorted keys of jointed pairs that do not collide
     StepStats stats_;
     std::vector<ContactEvent<T>> events_, events_pending_;
-    std::function<void(World&, const ContactEvent<T>&)> listener_;
+    std::shared_ptr<const Listener> listener_;    ///< shared: a running listener outlives its replacement
     std::function<bool(BodyId, BodyId)> filter_;
     T accumulator_{};
     // Scratch kept between steps so a settled step allocates nothing.
@@ -271,16 +317,20 @@ private:
     std::vector<std::uint8_t> island_flag_;       ///< per island root: wake it
     std::vector<T> island_sleep_time_;            ///< per island root: the least sleep clock
     std::vector<ContactEvent<T>> delivered_events_;  ///< the listener's copy of events_
+    bool in_filter_ = false;    ///< the contact filter is running: mutating calls are rejected
+    bool in_listener_ = false;  ///< the contact listener is running: step() and update() are rejected
 };
 
 template <class T>
 BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDef<T>& def) {
+    require_outside_filter("World::create_body");
     if (!shape) detail::report_invalid("World::create_body", "shape must not be null", 0.0);
     return create_body_impl(std::move(shape), nullptr, def);
 }
 
 template <class T>
 BodyId World<T>::create_body(std::shared_ptr<const Compound<T>> compound, const BodyDef<T>& def) {
+    require_outside_filter("World::create_body");
     if (!compound) detail::report_invalid("World::create_body", "compound must not be null", 0.0);
     return create_body_impl(nullptr, std::move(compound), def);
 }
@@ -301,6 +351,10 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     const Vec3<T> centre = shape ? interior_point(*shape) : Vec3<T>::zero();
     if (shape && length(centre) > T(1e-4) * bounding_radius(*shape))
         detail::report_invalid(where, "the shape's centre of mass must be its local origin (make_convex_hull and ConvexPolyhedron::recentered() re-centre); distance (m)", static_cast<double>(length(centre)));
+
+    // Every check comes before the first change: a rejected body leaves the world as it was.
+    if (def.type != BodyType::static_body && def.type != BodyType::kinematic && def.type != BodyType::dynamic)
+        detail::report_invalid(where, "type must be static_body, kinematic or dynamic; type", static_cast<double>(static_cast<std::uint8_t>(def.type)));
 
     // Mass properties before a slot is taken, so a rejected body leaves no trace.
     MassProperties<T> mass;
@@ -323,6 +377,15 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
               mass.inertia[1].y > T(0) && mass.inertia[2].z > T(0)))
             detail::report_invalid(where, "mass and inertia (density or mass times the shape's) must be finite and > 0 in this precision; mass",
                                    static_cast<double>(mass.mass));
+        // The checks set_mass_properties makes (a positive-definite inertia with a finite
+        // inverse), made here, before the slot is taken.
+        detail::check_mass_properties(mass, shape ? bounding_radius(*shape) : compound->bounding_radius(), where);
+    }
+    if (free_slots_.empty()) {  // grow the tables first, so an allocation failure changes nothing
+        const auto make_room = [](auto& table) {
+            if (table.size() == table.capacity()) table.reserve(std::max<std::size_t>(8, 2 * table.size()));
+        };
+        make_room(bounds_), make_room(previous_pose_), make_room(solver_index_);
     }
 
     std::uint32_t slot;
@@ -331,7 +394,7 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
         free_slots_.pop_back();
     } else {
         slot = static_cast<std::uint32_t>(bodies_.size());
-        bodies_.emplace_back();
+        bodies_.emplace_back();  // the only one that may throw (the deque), so it goes first
         bounds_.emplace_back();
         previous_pose_.emplace_back();
         solver_index_.push_back(0);
@@ -370,8 +433,11 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
 template <class T>
 JointId World<T>::create_joint(const JointDef<T>& def) {
     const char* where = "World::create_joint";
+    require_outside_filter(where);
     const std::uint32_t ia = checked(def.a, where), ib = checked(def.b, where);
     if (ia == ib) detail::report_invalid(where, "a joint needs two different bodies; body index", static_cast<double>(ia));
+    if (def.type != JointType::ball && def.type != JointType::hinge && def.type != JointType::fixed && def.type != JointType::distance)
+        detail::report_invalid(where, "type must be ball, hinge, fixed or distance; type", static_cast<double>(static_cast<std::uint8_t>(def.type)));
     const Body<T>& a = bodies_[ia];
     const Body<T>& b = bodies_[ib];
     if (a.type_ == BodyType::static_body && b.type_ == BodyType::static_body)
@@ -432,6 +498,7 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
 
 template <class T>
 void World<T>::destroy_joint(JointId id) {
+    require_outside_filter("World::destroy_joint");
     const std::uint32_t slot = checked(id, "World::destroy_joint");
     Joint<T>& j = joints_[slot];
     if (contains(j.a)) bodies_[j.a.index].wake();
@@ -445,6 +512,7 @@ void World<T>::destroy_joint(JointId id) {
 template <class T>
 void World<T>::set_hinge_motor(JointId id, bool enable, T speed, T max_torque) {
     const char* where = "World::set_hinge_motor";
+    require_outside_filter(where);
     Joint<T>& j = joints_[checked(id, where)];
     if (j.type != JointType::hinge) detail::report_invalid(where, "the joint is not a hinge; its type", static_cast<double>(j.type));
     detail::require_finite(speed, where, "speed");
@@ -498,6 +566,7 @@ void World<T>::prepare_joints(T h) {
 
 template <class T>
 void World<T>::reserve(std::size_t bodies, std::size_t contacts) {
+    require_outside_filter("World::reserve");
     bounds_.reserve(bodies);
     previous_pose_.reserve(bodies);
     solver_index_.reserve(bodies);
@@ -506,6 +575,7 @@ void World<T>::reserve(std::size_t bodies, std::size_t contacts) {
 
 template <class T>
 void World<T>::destroy_body(BodyId id) {
+    require_outside_filter("World::destroy_body");
     const std::uint32_t slot = checked(id, "World::destroy_body");
     wake_contacts_of(slot);
     contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
@@ -529,6 +599,7 @@ void World<T>::destroy_body(BodyId id) {
 template <class T>
 void World<T>::set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& orientation) {
     const char* where = "World::set_transform";
+    require_outside_filter(where);
     const std::uint32_t slot = checked(id, where);
     if (!is_finite(position)) detail::report_invalid(where, "position must be finite, x + y + z", static_cast<double>(position.x + position.y + position.z));
     if (!is_finite(orientation) || !(length_squared(orientation) > T(0)))
@@ -616,6 +687,7 @@ Transform<T> World<T>::interpolated_transform(BodyId id) const {
 
 template <class T>
 int World<T>::update(T seconds) {
+    require_outside_callbacks("World::update");
     detail::require_non_negative(seconds, "World::update", "seconds");
     accumulator_ += seconds;
     const T dt = settings_.fixed_time_step;
@@ -631,6 +703,7 @@ int World<T>::update(T seconds) {
 
 template <class T>
 void World<T>::step(T dt) {
+    require_outside_callbacks("World::step");
     detail::require_positive(dt, "World::step", "dt");
     stats_ = {};
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
@@ -683,9 +756,14 @@ void World<T>::report_events() {
     });
     if (listener_) {
         // The listener may change the world (and so events_): it is handed a copy kept between
-        // steps. A listener that steps the world from inside is not supported.
+        // steps, and each call holds the listener alive even if it replaces or clears itself.
         delivered_events_ = events_;
-        for (const ContactEvent<T>& e : delivered_events_) listener_(*this, e);
+        const FlagScope scope(in_listener_);
+        for (const ContactEvent<T>& e : delivered_events_) {
+            if (!listener_) break;  // cleared from inside
+            const std::shared_ptr<const Listener> current = listener_;
+            (*current)(*this, e);
+        }
     }
 }
 
@@ -721,7 +799,7 @@ void World<T>::narrow_phase(T dt) {
         const bool wanted = (a.type_ == BodyType::dynamic || b.type_ == BodyType::dynamic) && (a.layer_ & b.mask_) &&
                             (b.layer_ & a.mask_) &&
                             !std::binary_search(unconnected_pairs_.begin(), unconnected_pairs_.end(), pair_key(pair.a, pair.b)) &&
-                            !(filter_ && !filter_(id_of(pair.a), id_of(pair.b)));
+                            filter_allows(pair.a, pair.b);
         if (!wanted) {
             for (; old < old_end; ++old) end_contact(contacts_[old]);
             continue;
