@@ -209,8 +209,10 @@ std::string usage() {
            "  --precision float|double   scalar for parsing, the query and printing (default double)\n"
            "  -h, --help                 print this text\n"
            "\n"
-           "A bad line is reported on standard error with its line number and skipped.\n"
-           "Exit status: 0 all lines good, 1 some line was bad, 2 bad command line or unreadable file.\n";
+           "A bad line (a NUL byte makes one) is reported on standard error with its line number\n"
+           "and skipped.\n"
+           "Exit status: 0 all lines good, 1 some line was bad, 2 bad command line or input that\n"
+           "cannot be opened or read (a directory, a read error).\n";
 }
 
 template <class T>

@@ -227,7 +227,7 @@ TEST_CASE_TEMPLATE("regression: lengths and speeds in the settings beyond their 
         {"gravity.x", [](WorldSettings<T>& s, T v) { s.gravity.x = v; }},
     };
     for (const auto& [name, edit] : fields) {
-        CAPTURE(name);
+        INFO(std::string(name));
         for (const T v : {detail::max_setting_length<T>() * T(2), T(1e38), std::numeric_limits<T>::max()}) {
             WorldSettings<T> s;
             edit(s, v);
@@ -262,7 +262,7 @@ TEST_CASE_TEMPLATE("regression: settings reject unknown enum values and iteratio
         {"max_steps_per_update", [](WorldSettings<T>& x, int v) { x.max_steps_per_update = v; }, 1000},
     };
     for (const auto& [name, edit, limit] : counts) {
-        CAPTURE(name);
+        INFO(std::string(name));
         for (const int v : {limit + 1, 1000000, INT_MAX}) {
             WorldSettings<T> x;
             edit(x, v);

@@ -939,7 +939,7 @@ void World<T>::solve(T dt) {
         }
         for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
             const Body<T>& b = bodies_[solver_slot_[i]];
-            const T max_speed = b.fast_ ? ScalarTraits<T>::max : settings_.max_linear_speed;
+            const T max_speed = b.fast_ ? detail::max_setting_length<T>() : settings_.max_linear_speed;  // fast: 1e6 m/s (float)
             integrate_position(solver_bodies_[i], h, max_speed, max_rotation);
         }
         pass.use_bias = false;
