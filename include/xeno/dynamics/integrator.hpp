@@ -23,13 +23,22 @@ struct BodyIntegration {
     Quat<T> orientation0{};      ///< orientation at the start of the step
     T linear_damping{}, angular_damping{};
     bool gyroscopic = false;     ///< false for isotropic inertia, where ω × Iω = 0
+    T max_spin = ScalarTraits<T>::infinity;  ///< rad/s: the spin cap of integrate_position, applied first
 };
+
+namespace detail {
+template <class T>
+Vec3<T> capped_length(const Vec3<T>& v, T limit);
+}  // namespace detail
 
 /// v += h a, ω += h I⁻¹τ, then the implicit gyroscopic correction and damping.
 template <class T>
 void integrate_velocity(SolverBody<T>& body, const BodyIntegration<T>& in, T h) {
     body.v += in.acceleration * h;
     body.w += in.angular_impulse_rate * h;
+    // A spin far above the cap (a huge torque or set_angular_velocity) would overflow the
+    // gyroscopic term and the contact rows before integrate_position caps it: cap it here.
+    body.w = detail::capped_length(body.w, in.max_spin);
     if (in.gyroscopic) {
         // Implicit midpoint in the body frame: I (ω' − ω) + h ω_m × I ω_m = 0 with
         // ω_m = (ω + ω')/2. Dotting with I ω_m shows |I ω'| = |I ω|: the magnitude of the

@@ -923,6 +923,7 @@ void World<T>::solve(T dt) {
             in.gyroscopic = !b.isotropic_;
             in.linear_damping = b.linear_damping_;
             in.angular_damping = b.angular_damping_;
+            in.max_spin = max_rotation / h;
             integrate_velocity(solver_bodies_[i], in, h);
         }
         if (settings_.warm_starting) {
