@@ -5,7 +5,8 @@
 //   xeno_query pairs.tsv                      -> one result line per pair on standard output
 //   xeno_query --precision float < pairs.tsv  -> the same in float
 // Bad lines are reported on standard error by line number and skipped.
-// Exit status: 0 every line good, 1 some line bad, 2 bad command line or unreadable input file.
+// Exit status: 0 every line good, 1 some line bad, 2 bad command line or unreadable input (a
+// missing file, a directory, a read error).
 #include "query/query_format.hpp"
 
 #include <fstream>
@@ -26,15 +27,23 @@ int main(int argc, char** argv) {
     }
     std::ios::sync_with_stdio(false);
     int bad = 0;
-    if (options.input.empty() || options.input == "-") {
-        bad = process(std::cin, std::cout, std::cerr, options.precision);
-    } else {
-        std::ifstream file(options.input);
-        if (!file) {
-            std::cerr << "xeno_query: cannot open '" << options.input << "'\n";
-            return 2;
+    const bool standard_input = options.input.empty() || options.input == "-";
+    try {
+        if (standard_input) {
+            bad = process(std::cin, std::cout, std::cerr, options.precision);
+        } else {
+            std::ifstream file(options.input);
+            if (!file) {
+                std::cerr << "xeno_query: cannot open '" << options.input << "'\n";
+                return 2;
+            }
+            bad = process(file, std::cout, std::cerr, options.precision);
         }
-        bad = process(file, std::cout, std::cerr, options.precision);
+    } catch (const ReadError& e) {
+        std::cout.flush();
+        std::cerr << "xeno_query: cannot read " << (standard_input ? std::string("standard input") : "'" + options.input + "'")
+                  << ": " << e.what() << '\n';
+        return 2;
     }
     std::cout.flush();
     if (!std::cout) {

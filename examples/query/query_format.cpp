@@ -128,8 +128,11 @@ int process_as(std::istream& in, std::ostream& out, std::ostream& err) {
         ++line_number;
         if (line_number == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);  // UTF-8 byte-order mark
         if (line_number == 1 && is_header(line)) continue;
-        if (split_words(line).empty()) continue;  // blank line
+        if (split_words(line).empty() && line.find('\0') == std::string::npos) continue;  // blank line
         try {
+            // A NUL would end the line for the number parser ("sphere 1\0garbage" read as "sphere 1").
+            if (const std::size_t nul = line.find('\0'); nul != std::string::npos)
+                throw LineError("byte " + std::to_string(nul + 1) + ": a NUL byte (binary input?)");
             const Query<T> query = parse_line<T>(line);
             out << format_result(query.id, run_query(query)) << '\n';
         } catch (const std::exception& e) {
@@ -139,6 +142,7 @@ int process_as(std::istream& in, std::ostream& out, std::ostream& err) {
             ++bad;
         }
     }
+    if (in.bad()) throw ReadError("reading failed after line " + std::to_string(line_number) + " (a directory or an unreadable file?)");
     return bad;
 }
 
@@ -205,8 +209,10 @@ std::string usage() {
            "  --precision float|double   scalar for parsing, the query and printing (default double)\n"
            "  -h, --help                 print this text\n"
            "\n"
-           "A bad line is reported on standard error with its line number and skipped.\n"
-           "Exit status: 0 all lines good, 1 some line was bad, 2 bad command line or unreadable file.\n";
+           "A bad line (a NUL byte makes one) is reported on standard error with its line number\n"
+           "and skipped.\n"
+           "Exit status: 0 all lines good, 1 some line was bad, 2 bad command line or input that\n"
+           "cannot be opened or read (a directory, a read error).\n";
 }
 
 template <class T>

@@ -50,6 +50,13 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// The input stream failed while being read (a directory, a device that fails to read); main
+/// exits with status 2.
+class ReadError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
 /// The scalar every number of a run is parsed, computed and printed in.
 enum class Precision { single_float, double_float };
 
@@ -139,8 +146,9 @@ template <class T>
 Penetration<T> run_query(const Query<T>& query);
 
 /// Reads every line of in, writes one result line per good pair to out and one message per bad
-/// line to err ("xeno_query: line 7: shape B: unknown shape 'boxx'"). Blank lines are skipped.
-/// Returns the number of bad lines.
+/// line to err ("xeno_query: line 7: shape B: unknown shape 'boxx'"). Blank lines are skipped;
+/// a line holding a NUL byte is a bad line. Returns the number of bad lines; throws ReadError
+/// when reading in fails (the lines before are answered).
 int process(std::istream& in, std::ostream& out, std::ostream& err, Precision precision);
 
 }  // namespace xeno::query

@@ -16,6 +16,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <streambuf>
 #include <string>
 #include <vector>
 
@@ -336,6 +338,33 @@ TEST_CASE("bad lines are reported by number and the run goes on") {
     CHECK(err.find("shape A: '1e39' is not finite") != std::string::npos);
     run_process(overflow + "\n", Precision::double_float, err, bad);
     CHECK(bad == 0);
+}
+
+TEST_CASE("regression: a NUL byte makes a bad line instead of ending it") {
+    // "sphere 1\0garbage" was read as "sphere 1".
+    const std::string good = tsv({"ok", "sphere 1", "0 0 0", identity, "sphere 1", "1.5 0 0", identity});
+    const std::string nul = tsv({"n", std::string("sphere 1\0garbage", 16), "0 0 0", identity, "sphere 1", "1.5 0 0", identity});
+    const std::string nul_only = std::string("\0", 1);
+    std::string err;
+    int bad = 0;
+    const std::string out = run_process(good + "\n" + nul + "\n" + nul_only + "\n" + good + "\n", Precision::double_float, err, bad);
+    CHECK(bad == 2);
+    CHECK(lines_of(out).size() == 2);
+    const std::vector<std::string> messages = lines_of(err);
+    REQUIRE(messages.size() == 2);
+    CHECK(messages[0].rfind("xeno_query: line 2: byte 11: a NUL byte", 0) == 0);
+    CHECK(messages[1].rfind("xeno_query: line 3: byte 1: a NUL byte", 0) == 0);
+}
+
+TEST_CASE("regression: a stream that fails to read is reported, not taken as an empty input") {
+    // A directory opens as a file and then fails to read: the tool exited 0 with no message.
+    struct FailingBuffer : std::streambuf {
+        int_type underflow() override { throw std::runtime_error("EISDIR"); }
+    } buffer;
+    std::istream in(&buffer);
+    std::ostringstream out, errors;
+    CHECK_THROWS_AS(process(in, out, errors, Precision::double_float), ReadError);
+    CHECK(out.str().empty());
 }
 
 TEST_CASE("results print with the digits that round-trip the precision") {

@@ -116,5 +116,56 @@ void require_size(T value, const char* where, const char* what) {
                        static_cast<double>(value));
 }
 
+/// Rejects a value that is not finite or whose magnitude exceeds `limit` (a documented range
+/// such as ScalarTraits<T>::max_size); `unit` is appended to the limit in the message.
+template <class T>
+void require_at_most(T value, T limit, const char* where, const char* what, const char* unit = "") {
+    if (!(std::isfinite(value) && std::abs(value) <= limit))
+        report_invalid(where, (std::string(what) + " must be finite and within +-" + format_value(static_cast<double>(limit)) + unit)
+                                  .c_str(),
+                       static_cast<double>(value));
+}
+
+/// Rejects an integer count outside [low, high].
+inline void require_count(int value, int low, int high, const char* where, const char* what) {
+    if (value < low || value > high)
+        report_invalid(where, (std::string(what) + " must be within [" + std::to_string(low) + ", " + std::to_string(high) + "]").c_str(),
+                       static_cast<double>(value));
+}
+
+/// Rejects a vector with a non-finite component, naming the first one: "position.y must be
+/// finite (got nan)". Works for any type with x, y, z members (Vec3<T>).
+template <class V>
+void require_finite_xyz(const V& v, const char* where, const char* what) {
+    const char* names[3] = {".x", ".y", ".z"};
+    const decltype(v.x) values[3] = {v.x, v.y, v.z};
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(values[i]))
+            report_invalid(where, (std::string(what) + names[i] + " must be finite").c_str(), static_cast<double>(values[i]));
+}
+
+/// Rejects a vector whose components are not all finite and within +-limit, naming the first
+/// bad one.
+template <class V, class T>
+void require_within_xyz(const V& v, T limit, const char* where, const char* what, const char* unit = "") {
+    const char* names[3] = {".x", ".y", ".z"};
+    const decltype(v.x) values[3] = {v.x, v.y, v.z};
+    for (int i = 0; i < 3; ++i) require_at_most(values[i], limit, where, (std::string(what) + names[i]).c_str(), unit);
+}
+
+/// Rejects an orientation quaternion (w, x, y, z members) with a non-finite component (naming
+/// the first) or with every component zero. Any other quaternion is a rotation once normalised.
+template <class Q>
+void require_orientation(const Q& q, const char* where, const char* what) {
+    const char* names[4] = {".w", ".x", ".y", ".z"};
+    const decltype(q.w) values[4] = {q.w, q.x, q.y, q.z};
+    for (int i = 0; i < 4; ++i)
+        if (!std::isfinite(values[i]))
+            report_invalid(where, (std::string(what) + names[i] + " must be finite").c_str(), static_cast<double>(values[i]));
+    using S = decltype(q.w);
+    if (q.w == S(0) && q.x == S(0) && q.y == S(0) && q.z == S(0))
+        report_invalid(where, (std::string(what) + " must not be the zero quaternion; w").c_str(), static_cast<double>(q.w));
+}
+
 }  // namespace detail
 }  // namespace xeno

@@ -14,6 +14,7 @@
 #include "decode.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 using namespace xeno;
@@ -151,6 +152,26 @@ void run(FuzzedDataProvider& in) {
                 break;
             case 5:  // force and torque for the next step
                 if (!live) break;
+                if (in.ConsumeIntegralInRange<int>(0, 7) == 0) {
+                    // Finite but extreme (up to the largest T): accepted, and then stepped to a
+                    // finite state, or rejected leaving the accumulated sums as they were.
+                    Body<T>& b = world.body(id);
+                    const T big = static_cast<T>(static_cast<double>(std::numeric_limits<T>::max()) * in.ConsumeProbability<double>());
+                    const Vec3<T> push{big, -big, in.ConsumeBool() ? big : T(0)};
+                    const Vec3<T> force = b.force(), torque = b.torque();
+                    try {
+                        b.apply_force(push);
+                    } catch (const InvalidArgument&) {
+                        if (!(b.force() == force)) fuzz::fail("a rejected apply_force changed the accumulated force");
+                    }
+                    try {
+                        b.apply_torque(push);
+                    } catch (const InvalidArgument&) {
+                        if (!(b.torque() == torque)) fuzz::fail("a rejected apply_torque changed the accumulated torque");
+                    }
+                    b.set_linear_velocity(push);  // any finite velocity is accepted; the speed cap holds it
+                    break;
+                }
                 world.body(id).apply_force(vector<T>(in, world.body(id).is_dynamic() ? 100.0 * world.body(id).mass() : 1.0));
                 world.body(id).apply_torque(vector<T>(in, 10.0));
                 break;

@@ -83,7 +83,7 @@ TEST_CASE_TEMPLATE("polyhedron construction rejects broken input with a clear me
     };
     std::vector<Vec3<T>> nan_vertices = v;
     nan_vertices[3].y = std::numeric_limits<T>::quiet_NaN();
-    CHECK(message([&] { ConvexPolyhedron<T>(nan_vertices, faces); }).find("vertex 3 must be finite") != std::string::npos);
+    CHECK(message([&] { ConvexPolyhedron<T>(nan_vertices, faces); }).find("vertex 3.y must be finite") != std::string::npos);
     auto open = faces;
     open.pop_back();
     CHECK(message([&] { ConvexPolyhedron<T>(v, open); }).find("closed") != std::string::npos);
@@ -101,4 +101,37 @@ TEST_CASE_TEMPLATE("polyhedron construction rejects broken input with a clear me
     auto inside_out = faces;
     for (auto& f : inside_out) std::reverse(f.begin(), f.end());
     CHECK(message([&] { ConvexPolyhedron<T>(v, inside_out); }) != "no error");
+}
+
+TEST_CASE_TEMPLATE("regression: two shells (a doubled surface, a nested copy) are not one polyhedron", T, float, double) {
+    // Each shell alone pairs every edge with its reverse and is convex, so both passed: a doubled
+    // tetrahedron had twice the volume and mass. V − E + F is 4 for two shells, 2 for one.
+    const ConvexPolyhedron<T> tetra = make_tetrahedron(T(1));
+    std::vector<std::vector<std::uint32_t>> faces;
+    for (const auto& f : tetra.faces())
+        faces.emplace_back(tetra.face_indices().begin() + f.first, tetra.face_indices().begin() + f.first + f.count);
+    CHECK(tetra.vertices().size() - tetra.edges().size() + tetra.faces().size() == 2);
+    auto message = [](auto&& build) -> std::string {
+        try {
+            build();
+        } catch (const InvalidArgument& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    // Scale 1: two coincident copies; just below 1: a copy inside, within the convexity tolerance.
+    for (const T scale : {T(1), T(1) - T(16) * ScalarTraits<T>::geometric_tolerance}) {
+        CAPTURE(scale);
+        std::vector<Vec3<T>> vertices = tetra.vertices();
+        for (const Vec3<T>& v : tetra.vertices()) vertices.push_back(v * scale);
+        std::vector<std::vector<std::uint32_t>> doubled = faces;
+        for (std::vector<std::uint32_t> f : faces) {
+            for (std::uint32_t& index : f) index += 4;
+            doubled.push_back(f);
+        }
+        const std::string m = message([&] { ConvexPolyhedron<T>(vertices, doubled); });
+        INFO(m);
+        CHECK(m.find("ConvexPolyhedron: is not one closed surface") != std::string::npos);
+        CHECK(m.find("(got 4)") != std::string::npos);
+    }
 }

@@ -63,12 +63,8 @@ constexpr int kMprMaxIterations = 64;
 
 template <class T>
 void require_finite_pose(const Transform<T>& pose, const char* where, const char* name) {
-    if (!is_finite(pose.position))
-        report_invalid(where, (std::string(name) + ".position must be finite, x + y + z").c_str(),
-                       static_cast<double>(pose.position.x + pose.position.y + pose.position.z));
-    if (!is_finite(pose.orientation) || !(length_squared(pose.orientation) > T(0)))
-        report_invalid(where, (std::string(name) + ".orientation must be a finite, non-zero quaternion, w").c_str(),
-                       static_cast<double>(pose.orientation.w));
+    require_finite_xyz(pose.position, where, (std::string(name) + ".position").c_str());
+    require_orientation(pose.orientation, where, (std::string(name) + ".orientation").c_str());
     // rotate() assumes a unit quaternion: any other scales and shears the shape.
     if (!(std::abs(length_squared(pose.orientation) - T(1)) <= T(1e-3)))
         report_invalid(where, (std::string(name) + ".orientation must be a unit quaternion (within 1e-3; normalise it), |q|^2").c_str(),

@@ -2,7 +2,8 @@
 // SPDX-License-Identifier: MIT
 //
 // Ray casts and point tests against every shape, in closed form in the shape's local frame: a
-// quadratic for the round surfaces (sphere, capsule side and ends, cylinder side, cone side), a
+// quadratic for the round surfaces (sphere, capsule side and ends, cylinder side, cone side; the
+// first three in a form that does not cancel for far rays, see enter_round), a
 // plane for flat ones (cylinder caps, cone base) and slab clipping for boxes and polyhedra
 // (Cyrus–Beck: the ray enters at the last entering face plane and leaves at the first leaving
 // one). Shapes are solid: a ray that starts inside one hits it at distance 0, with the normal
@@ -73,34 +74,53 @@ std::optional<LocalHit<T>> clip_by_planes(const Vec3<T>& o, const Vec3<T>& d, T 
     return LocalHit<T>{enter, normal};
 }
 
-/// The entering root t in [0, max_t] of a t² + 2 b t + c = 0 (a > 0): the smaller one. A ray
-/// that starts inside the quadric (smaller root < 0) does not enter it.
+/// The entering distance t in [0, max_t] of a ray o + t d (|d|² = a > 0) into the round set of
+/// points within r of a point or an axis through the local origin, where m is the origin's offset
+/// across it (o for a sphere; o's part across the axis for a cylinder, and d likewise), and the
+/// offset across it at the hit (for the normal). The textbook discriminant b² − a c cancels when
+/// the ray starts far away (|m| ≫ r: from 1 km a float unit sphere was hit 1 cm off, from 10⁸ m a
+/// capsule was missed); here the origin is first moved to the ray's closest approach,
+/// t_c = −m·d / a, and the half chord √((r² − |q|²) / a) comes from the small vector
+/// q = m + t_c d (the stable form of Haines et al., "Precision Improvements for Ray/Sphere
+/// Intersection", Ray Tracing Gems, 2019). A ray that starts inside does not enter.
 template <class T>
-std::optional<T> first_root(T a, T b, T c, T max_t) {
-    const T disc = b * b - a * c;
-    if (disc < T(0) || a <= T(0)) return std::nullopt;
-    const T t0 = (-b - std::sqrt(disc)) / a;
-    if (t0 >= T(0) && t0 <= max_t) return t0;
+struct RoundHit {
+    T t;
+    Vec3<T> offset;  ///< from the centre (or axis) to the hit point
+};
+
+template <class T>
+std::optional<RoundHit<T>> enter_round(const Vec3<T>& m, const Vec3<T>& d, T a, T r, T max_t) {
+    if (!(a > T(0))) return std::nullopt;
+    const T t_closest = -dot(m, d) / a;
+    const Vec3<T> q = m + d * t_closest;
+    const T q_length = length(q);
+    const T h_sq = (r - q_length) * (r + q_length);  // r² − |q|²
+    if (h_sq < T(0)) return std::nullopt;
+    const T half_chord = std::sqrt(h_sq / a);
+    const T t0 = t_closest - half_chord;
+    if (t0 >= T(0) && t0 <= max_t) return RoundHit<T>{t0, q - d * half_chord};
     return std::nullopt;
 }
 
 template <class T>
 std::optional<LocalHit<T>> ray_sphere(const Vec3<T>& o, const Vec3<T>& d, T max_t, const Vec3<T>& centre, T r) {
     const Vec3<T> m = o - centre;
-    const T c = dot(m, m) - r * r;
-    if (c <= T(0)) return LocalHit<T>{T(0), -d};
-    if (const std::optional<T> t = first_root(T(1), dot(m, d), c, max_t)) return LocalHit<T>{*t, normalized_or(m + d * *t, -d)};
+    if (length_squared(m) <= r * r) return LocalHit<T>{T(0), -d};
+    if (const std::optional<RoundHit<T>> hit = enter_round(m, d, length_squared(d), r, max_t))
+        return LocalHit<T>{hit->t, normalized_or(hit->offset, -d)};
     return std::nullopt;
 }
 
-/// The side of an infinite y-axis cylinder of radius r, restricted to |y - y0| <= h.
+/// The side of an infinite y-axis cylinder of radius r, restricted to y_low <= y <= y_high.
 template <class T>
 std::optional<LocalHit<T>> ray_cylinder_side(const Vec3<T>& o, const Vec3<T>& d, T max_t, T r, T y_low, T y_high) {
-    const T a = d.x * d.x + d.z * d.z;
+    const Vec3<T> across{d.x, T(0), d.z};
+    const T a = length_squared(across);
     if (a <= ScalarTraits<T>::epsilon) return std::nullopt;  // parallel to the axis
-    if (const std::optional<T> t = first_root(a, o.x * d.x + o.z * d.z, o.x * o.x + o.z * o.z - r * r, max_t)) {
-        const Vec3<T> p = o + d * *t;
-        if (p.y >= y_low && p.y <= y_high) return LocalHit<T>{*t, normalized_or(Vec3<T>{p.x, T(0), p.z}, -d)};
+    if (const std::optional<RoundHit<T>> hit = enter_round(Vec3<T>{o.x, T(0), o.z}, across, a, r, max_t)) {
+        const T y = o.y + d.y * hit->t;
+        if (y >= y_low && y <= y_high) return LocalHit<T>{hit->t, normalized_or(hit->offset, -d)};
     }
     return std::nullopt;
 }
@@ -165,8 +185,9 @@ std::optional<LocalHit<T>> raycast_local(const Shape<T>& shape, const Vec3<T>& o
                 if (auto side = ray_cylinder_side(o, d, max_t, r, -h, h)) keep_nearer(best, side->t, side->n);
                 for (const T y : {h, -h})
                     if (auto cap = ray_sphere(o, d, max_t, Vec3<T>{T(0), y, T(0)}, r)) {
-                        const Vec3<T> p = o + d * cap->t;
-                        if (y > T(0) ? p.y >= h : p.y <= -h) keep_nearer(best, cap->t, cap->n);
+                        // On the cap's own half: the normal (the hit's offset from the cap's
+                        // centre, exact even for far rays) points away from the segment.
+                        if (y > T(0) ? cap->n.y >= T(0) : cap->n.y <= T(0)) keep_nearer(best, cap->t, cap->n);
                     }
             } else if constexpr (std::is_same_v<S, Cylinder<T>>) {
                 const T h = s.half_height(), r = s.radius();

@@ -54,7 +54,7 @@ struct BodyDef {
     T linear_damping = T(0);                        ///< 1/s: v decays as 1/(1 + c dt) per step
     T angular_damping = T(0);                       ///< 1/s
     T gravity_scale = T(1);
-    bool fast = false;          ///< continuous collision against static and kinematic bodies; no speed cap
+    bool fast = false;          ///< continuous collision against static and kinematic bodies; speed cap 1e6 m/s (float), 1e30 (double)
     bool allow_sleep = true;    ///< false keeps the body (and its island) awake
     bool sensor = false;        ///< reports overlaps, never pushes or is pushed
     std::uint32_t layer = 1;    ///< collision layer bits of this body
@@ -175,7 +175,9 @@ public:
 private:
     friend class World<T>;
     friend struct SnapshotAccess<T>;
-    void require_finite(const Vec3<T>& v, const char* where, const char* what) const;
+    /// Adds to the accumulated force and torque, or rejects (leaving both unchanged) when a sum
+    /// or the acceleration it gives would leave the range of T.
+    void accumulate(const Vec3<T>& force, const Vec3<T>& torque, const char* where);
 
     std::shared_ptr<const Shape<T>> shape_;        ///< the convex shape (null for compounds)
     std::shared_ptr<const Compound<T>> compound_;  ///< the parts (null for one convex shape)
@@ -204,11 +206,15 @@ private:
 };
 
 template <class T>
-void Body<T>::require_finite(const Vec3<T>& v, const char* where, const char* what) const {
-    if (!is_finite(v)) {
-        const T bad = !std::isfinite(v.x) ? v.x : (!std::isfinite(v.y) ? v.y : v.z);
-        detail::report_invalid(where, (std::string(what) + " must be finite").c_str(), static_cast<double>(bad));
-    }
+void Body<T>::accumulate(const Vec3<T>& force, const Vec3<T>& torque, const char* where) {
+    const Vec3<T> f = force_ + force;
+    const Vec3<T> t = torque_ + torque;
+    detail::require_finite_xyz(f, where, "accumulated force");
+    detail::require_finite_xyz(t, where, "accumulated torque");
+    detail::require_finite_xyz(f * inverse_mass_, where, "accumulated force / mass");
+    if (t != Vec3<T>::zero()) detail::require_finite_xyz(inverse_inertia_world() * t, where, "inverse inertia * accumulated torque");
+    force_ = f;
+    torque_ = t;
 }
 
 template <class T>
@@ -220,7 +226,7 @@ T Body<T>::kinetic_energy() const {
 
 template <class T>
 void Body<T>::set_linear_velocity(const Vec3<T>& v) {
-    require_finite(v, "Body::set_linear_velocity", "velocity");
+    detail::require_finite_xyz(v, "Body::set_linear_velocity", "velocity");
     if (type_ == BodyType::static_body) return;
     linear_velocity_ = v;
     wake();
@@ -228,7 +234,7 @@ void Body<T>::set_linear_velocity(const Vec3<T>& v) {
 
 template <class T>
 void Body<T>::set_angular_velocity(const Vec3<T>& w) {
-    require_finite(w, "Body::set_angular_velocity", "angular velocity");
+    detail::require_finite_xyz(w, "Body::set_angular_velocity", "angular_velocity");
     if (type_ == BodyType::static_body) return;
     angular_velocity_ = w;
     wake();
@@ -236,53 +242,62 @@ void Body<T>::set_angular_velocity(const Vec3<T>& w) {
 
 template <class T>
 void Body<T>::apply_force(const Vec3<T>& f) {
-    require_finite(f, "Body::apply_force", "force");
+    detail::require_finite_xyz(f, "Body::apply_force", "force");
     if (type_ != BodyType::dynamic) return;
-    force_ += f;
+    accumulate(f, Vec3<T>::zero(), "Body::apply_force");
     wake();
 }
 
 template <class T>
 void Body<T>::apply_force_at(const Vec3<T>& f, const Vec3<T>& world_point) {
-    require_finite(f, "Body::apply_force_at", "force");
-    require_finite(world_point, "Body::apply_force_at", "point");
+    detail::require_finite_xyz(f, "Body::apply_force_at", "force");
+    detail::require_finite_xyz(world_point, "Body::apply_force_at", "point");
     if (type_ != BodyType::dynamic) return;
-    force_ += f;
-    torque_ += cross(world_point - position_, f);
+    const Vec3<T> torque = cross(world_point - position_, f);
+    detail::require_finite_xyz(torque, "Body::apply_force_at", "torque (point - position) x force");
+    accumulate(f, torque, "Body::apply_force_at");
     wake();
 }
 
 template <class T>
 void Body<T>::apply_torque(const Vec3<T>& t) {
-    require_finite(t, "Body::apply_torque", "torque");
+    detail::require_finite_xyz(t, "Body::apply_torque", "torque");
     if (type_ != BodyType::dynamic) return;
-    torque_ += t;
+    accumulate(Vec3<T>::zero(), t, "Body::apply_torque");
     wake();
 }
 
 template <class T>
 void Body<T>::apply_impulse_at(const Vec3<T>& impulse, const Vec3<T>& world_point) {
-    require_finite(impulse, "Body::apply_impulse_at", "impulse");
-    require_finite(world_point, "Body::apply_impulse_at", "point");
+    detail::require_finite_xyz(impulse, "Body::apply_impulse_at", "impulse");
+    detail::require_finite_xyz(world_point, "Body::apply_impulse_at", "point");
     if (type_ != BodyType::dynamic) return;
-    linear_velocity_ += impulse * inverse_mass_;
-    angular_velocity_ += inverse_inertia_world() * cross(world_point - position_, impulse);
+    const Vec3<T> v = linear_velocity_ + impulse * inverse_mass_;
+    const Vec3<T> w = angular_velocity_ + inverse_inertia_world() * cross(world_point - position_, impulse);
+    detail::require_finite_xyz(v, "Body::apply_impulse_at", "resulting linear_velocity");
+    detail::require_finite_xyz(w, "Body::apply_impulse_at", "resulting angular_velocity");
+    linear_velocity_ = v;
+    angular_velocity_ = w;
     wake();
 }
 
 template <class T>
 void Body<T>::apply_linear_impulse(const Vec3<T>& impulse) {
-    require_finite(impulse, "Body::apply_linear_impulse", "impulse");
+    detail::require_finite_xyz(impulse, "Body::apply_linear_impulse", "impulse");
     if (type_ != BodyType::dynamic) return;
-    linear_velocity_ += impulse * inverse_mass_;
+    const Vec3<T> v = linear_velocity_ + impulse * inverse_mass_;
+    detail::require_finite_xyz(v, "Body::apply_linear_impulse", "resulting linear_velocity");
+    linear_velocity_ = v;
     wake();
 }
 
 template <class T>
 void Body<T>::apply_angular_impulse(const Vec3<T>& impulse) {
-    require_finite(impulse, "Body::apply_angular_impulse", "impulse");
+    detail::require_finite_xyz(impulse, "Body::apply_angular_impulse", "impulse");
     if (type_ != BodyType::dynamic) return;
-    angular_velocity_ += inverse_inertia_world() * impulse;
+    const Vec3<T> w = angular_velocity_ + inverse_inertia_world() * impulse;
+    detail::require_finite_xyz(w, "Body::apply_angular_impulse", "resulting angular_velocity");
+    angular_velocity_ = w;
     wake();
 }
 
@@ -296,7 +311,7 @@ void Body<T>::set_damping(T linear, T angular) {
 
 template <class T>
 void Body<T>::set_gravity_scale(T scale) {
-    detail::require_finite(scale, "Body::set_gravity_scale", "scale");
+    detail::require_at_most(scale, ScalarTraits<T>::max_size, "Body::set_gravity_scale", "scale");
     gravity_scale_ = scale;
     wake();
 }

@@ -23,13 +23,22 @@ struct BodyIntegration {
     Quat<T> orientation0{};      ///< orientation at the start of the step
     T linear_damping{}, angular_damping{};
     bool gyroscopic = false;     ///< false for isotropic inertia, where ω × Iω = 0
+    T max_spin = ScalarTraits<T>::infinity;  ///< rad/s: the spin cap of integrate_position, applied first
 };
+
+namespace detail {
+template <class T>
+Vec3<T> capped_length(const Vec3<T>& v, T limit);
+}  // namespace detail
 
 /// v += h a, ω += h I⁻¹τ, then the implicit gyroscopic correction and damping.
 template <class T>
 void integrate_velocity(SolverBody<T>& body, const BodyIntegration<T>& in, T h) {
     body.v += in.acceleration * h;
     body.w += in.angular_impulse_rate * h;
+    // A spin far above the cap (a huge torque or set_angular_velocity) would overflow the
+    // gyroscopic term and the contact rows before integrate_position caps it: cap it here.
+    body.w = detail::capped_length(body.w, in.max_spin);
     if (in.gyroscopic) {
         // Implicit midpoint in the body frame: I (ω' − ω) + h ω_m × I ω_m = 0 with
         // ω_m = (ω + ω')/2. Dotting with I ω_m shows |I ω'| = |I ω|: the magnitude of the
@@ -56,13 +65,35 @@ void integrate_velocity(SolverBody<T>& body, const BodyIntegration<T>& in, T h) 
     body.w *= T(1) / (T(1) + h * in.angular_damping);
 }
 
+namespace detail {
+
+/// v scaled down to length `limit` when it is longer (limit > 0). The length is taken after
+/// dividing by the largest component, so a finite v of any size (1e20 in float, whose square
+/// overflows) keeps its direction; an infinite component counts as the direction of v.
+template <class T>
+Vec3<T> capped_length(const Vec3<T>& v, T limit) {
+    const T length_sq = length_squared(v);
+    if (std::isfinite(length_sq)) return length_sq > limit * limit ? v * (limit / std::sqrt(length_sq)) : v;
+    Vec3<T> u = v;
+    if (!is_finite(v)) {  // an overflowed velocity: keep the signs of the infinite components
+        for (int i = 0; i < 3; ++i) u[i] = std::isinf(v[i]) ? std::copysign(T(1), v[i]) : T(0);
+    } else {
+        const T largest = std::max(std::max(std::abs(v.x), std::abs(v.y)), std::abs(v.z));
+        u = v / largest;  // components in [-1, 1], |u| in [1, √3]
+        if (largest * length(u) <= limit) return v;  // only for a limit beyond √(max) (fast bodies)
+    }
+    return u * (limit / length(u));
+}
+
+}  // namespace detail
+
 /// Δx += h v, Δq ← Δq + h/2 (0, ω) Δq, with the speed caps against tunnelling.
 template <class T>
 void integrate_position(SolverBody<T>& body, T h, T max_speed, T max_rotation) {
-    const T speed_sq = length_squared(body.v);
-    if (speed_sq > max_speed * max_speed) body.v *= max_speed / std::sqrt(speed_sq);
+    body.v = detail::capped_length(body.v, max_speed);
     const T turn_sq = length_squared(body.w) * h * h;
-    if (turn_sq > max_rotation * max_rotation) body.w *= max_rotation / std::sqrt(turn_sq);
+    if (!std::isfinite(turn_sq)) body.w = detail::capped_length(body.w, max_rotation / h);
+    else if (turn_sq > max_rotation * max_rotation) body.w *= max_rotation / std::sqrt(turn_sq);
     body.dp += body.v * h;
     body.dq = integrate(body.dq, body.w, h);
 }

@@ -339,15 +339,14 @@ template <class T>
 BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
                                   const BodyDef<T>& def) {
     const char* where = "World::create_body";
-    if (!is_finite(def.position)) detail::report_invalid(where, "position must be finite, x + y + z", static_cast<double>(def.position.x + def.position.y + def.position.z));
-    if (!is_finite(def.orientation) || !(length_squared(def.orientation) > T(0)))
-        detail::report_invalid(where, "orientation must be a finite, non-zero quaternion, w", static_cast<double>(def.orientation.w));
-    if (!is_finite(def.linear_velocity)) detail::report_invalid(where, "linear_velocity must be finite, x + y + z", static_cast<double>(def.linear_velocity.x + def.linear_velocity.y + def.linear_velocity.z));
-    if (!is_finite(def.angular_velocity)) detail::report_invalid(where, "angular_velocity must be finite, x + y + z", static_cast<double>(def.angular_velocity.x + def.angular_velocity.y + def.angular_velocity.z));
+    detail::require_finite_xyz(def.position, where, "position");
+    detail::require_orientation(def.orientation, where, "orientation");
+    detail::require_finite_xyz(def.linear_velocity, where, "linear_velocity");
+    detail::require_finite_xyz(def.angular_velocity, where, "angular_velocity");
     detail::validate(def.material, where);
     detail::require_non_negative(def.linear_damping, where, "linear_damping");
     detail::require_non_negative(def.angular_damping, where, "angular_damping");
-    detail::require_finite(def.gravity_scale, where, "gravity_scale");
+    detail::require_at_most(def.gravity_scale, ScalarTraits<T>::max_size, where, "gravity_scale");
     const Vec3<T> centre = shape ? interior_point(*shape) : Vec3<T>::zero();
     if (shape && length(centre) > T(1e-4) * bounding_radius(*shape))
         detail::report_invalid(where, "the shape's centre of mass must be its local origin (make_convex_hull and ConvexPolyhedron::recentered() re-centre); distance (m)", static_cast<double>(length(centre)));
@@ -442,8 +441,8 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
     const Body<T>& b = bodies_[ib];
     if (a.type_ == BodyType::static_body && b.type_ == BodyType::static_body)
         detail::report_invalid(where, "a joint between two static bodies does nothing; body index", static_cast<double>(ib));
-    if (!is_finite(def.anchor_a) || !is_finite(def.anchor_b))
-        detail::report_invalid(where, "anchors must be finite, anchor_a.x", static_cast<double>(def.anchor_a.x));
+    detail::require_finite_xyz(def.anchor_a, where, "anchor_a");
+    detail::require_finite_xyz(def.anchor_b, where, "anchor_b");
     Joint<T> j;
     j.type = def.type;
     j.a = def.a;
@@ -453,7 +452,8 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
     j.local_anchor_b = b.local_point(def.type == JointType::distance ? def.anchor_b : def.anchor_a);
     if (def.type == JointType::hinge) {
         const std::optional<Vec3<T>> axis = is_finite(def.axis) ? try_normalized(def.axis) : std::nullopt;
-        if (!axis) detail::report_invalid(where, "hinge axis must be finite and non-zero; its length", static_cast<double>(length(def.axis)));
+        detail::require_finite_xyz(def.axis, where, "axis");
+        if (!axis) detail::report_invalid(where, "hinge axis must be non-zero; its length", static_cast<double>(length(def.axis)));
         j.local_axis_a = a.local_vector(*axis);
         j.local_axis_b = b.local_vector(*axis);
         const Vec3<T> ref = any_perpendicular(*axis);
@@ -601,9 +601,8 @@ void World<T>::set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& 
     const char* where = "World::set_transform";
     require_outside_filter(where);
     const std::uint32_t slot = checked(id, where);
-    if (!is_finite(position)) detail::report_invalid(where, "position must be finite, x + y + z", static_cast<double>(position.x + position.y + position.z));
-    if (!is_finite(orientation) || !(length_squared(orientation) > T(0)))
-        detail::report_invalid(where, "orientation must be a finite, non-zero quaternion, w", static_cast<double>(orientation.w));
+    detail::require_finite_xyz(position, where, "position");
+    detail::require_orientation(orientation, where, "orientation");
     Body<T>& b = bodies_[slot];
     b.position_ = position;
     b.orientation_ = normalized(orientation);
@@ -617,7 +616,7 @@ void World<T>::set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& 
 template <class T>
 std::vector<WorldRayHit<T>> World<T>::raycast_all(const Ray<T>& ray) const {
     const char* where = "World::raycast";
-    if (!is_finite(ray.origin)) detail::report_invalid(where, "ray origin must be finite, x + y + z", static_cast<double>(ray.origin.x + ray.origin.y + ray.origin.z));
+    detail::require_finite_xyz(ray.origin, where, "ray.origin");
     if (!is_finite(ray.direction) || std::abs(length(ray.direction) - T(1)) > T(1e-3))
         detail::report_invalid(where, "ray direction must be a unit vector; its length", static_cast<double>(length(ray.direction)));
     if (!(ray.max_distance > T(0))) detail::report_invalid(where, "ray max_distance must be > 0", static_cast<double>(ray.max_distance));
@@ -646,7 +645,7 @@ std::optional<WorldRayHit<T>> World<T>::raycast(const Ray<T>& ray) const {
 
 template <class T>
 std::vector<BodyId> World<T>::query_point(const Vec3<T>& point) const {
-    if (!is_finite(point)) detail::report_invalid("World::query_point", "point must be finite, x + y + z", static_cast<double>(point.x + point.y + point.z));
+    detail::require_finite_xyz(point, "World::query_point", "point");
     std::vector<BodyId> out;
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
         if (bodies_[i].alive_ && bounds_[i].contains(point))
@@ -660,7 +659,8 @@ std::vector<BodyId> World<T>::query_point(const Vec3<T>& point) const {
 
 template <class T>
 std::vector<BodyId> World<T>::query_aabb(const Aabb<T>& box) const {
-    if (!is_finite(box.min) || !is_finite(box.max)) detail::report_invalid("World::query_aabb", "box must be finite, min.x", static_cast<double>(box.min.x));
+    detail::require_finite_xyz(box.min, "World::query_aabb", "box.min");
+    detail::require_finite_xyz(box.max, "World::query_aabb", "box.max");
     std::vector<BodyId> out;
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
         if (bodies_[i].alive_ && overlaps(bounds_[i], box) && overlaps(bodies_[i].world_bounds(), box))
@@ -705,6 +705,7 @@ template <class T>
 void World<T>::step(T dt) {
     require_outside_callbacks("World::step");
     detail::require_positive(dt, "World::step", "dt");
+    detail::require_at_most(dt, detail::max_time_step<T>(), "World::step", "dt", " s");
     stats_ = {};
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
         if (bodies_[i].alive_) previous_pose_[i] = bodies_[i].transform();
@@ -1059,6 +1060,7 @@ void World<T>::solve(T dt) {
             in.gyroscopic = !b.isotropic_;
             in.linear_damping = b.linear_damping_;
             in.angular_damping = b.angular_damping_;
+            in.max_spin = max_rotation / h;
             integrate_velocity(solver_bodies_[i], in, h);
         }
         if (settings_.warm_starting) {
@@ -1075,7 +1077,7 @@ void World<T>::solve(T dt) {
         }
         for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
             const Body<T>& b = bodies_[solver_slot_[i]];
-            const T max_speed = b.fast_ ? ScalarTraits<T>::max : settings_.max_linear_speed;
+            const T max_speed = b.fast_ ? detail::max_setting_length<T>() : settings_.max_linear_speed;  // fast: 1e6 m/s (float)
             integrate_position(solver_bodies_[i], h, max_speed, max_rotation);
         }
         pass.use_bias = false;

@@ -73,12 +73,18 @@ template <class T> constexpr Quat<T> conjugate(const Quat<T>& q) { return {q.w, 
 template <class T> constexpr Quat<T> inverse(const Quat<T>& q) { return conjugate(q) * (T(1) / length_squared(q)); }
 template <class T> bool is_finite(const Quat<T>& q) { return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z); }
 
-/// q scaled to unit length; a zero (or non-finite) quaternion gives the identity.
+/// q scaled to unit length; a zero (or non-finite) quaternion gives the identity. A quaternion
+/// whose squared length would under- or overflow (components of 1e-20 or 1e20 in float) is first
+/// divided by its largest component, so every finite non-zero q keeps its direction.
 template <class T>
 Quat<T> normalized(const Quat<T>& q) {
     const T len_sq = length_squared(q);
-    if (!(len_sq > std::numeric_limits<T>::min()) || !std::isfinite(len_sq)) return Quat<T>::identity();
-    return q * (T(1) / std::sqrt(len_sq));
+    if (len_sq >= T(1e-8) && len_sq <= T(1e8)) return q * (T(1) / std::sqrt(len_sq));  // the usual case
+    if (!is_finite(q)) return Quat<T>::identity();
+    const T largest = std::max(std::max(std::abs(q.w), std::abs(q.x)), std::max(std::abs(q.y), std::abs(q.z)));
+    if (largest == T(0)) return Quat<T>::identity();
+    const Quat<T> s{q.w / largest, q.x / largest, q.y / largest, q.z / largest};  // in [-1, 1], one of them ±1
+    return s * (T(1) / length(s));
 }
 
 /// v rotated by the unit quaternion q: q (0, v) q*, as v + 2w (u × v) + 2 u × (u × v), u = q.vec().

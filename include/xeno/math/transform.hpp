@@ -49,7 +49,7 @@ constexpr Transform<T> operator*(const Transform<T>& a, const Transform<T>& b) {
 /// True when the position is finite and the orientation finite and not zero.
 template <class T>
 bool is_finite(const Transform<T>& t) {
-    return is_finite(t.position) && is_finite(t.orientation) && length_squared(t.orientation) > T(0);
+    return is_finite(t.position) && is_finite(t.orientation) && t.orientation != Quat<T>{T(0), T(0), T(0), T(0)};
 }
 
 namespace f32 { using Transform = xeno::Transform<float>; }

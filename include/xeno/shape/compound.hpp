@@ -34,7 +34,8 @@ public:
 
     /// Children in any frame; they are re-centred on their common centre of mass (uniform
     /// density), and shift() is where that centre was in the given frame. At least one child,
-    /// finite transforms (InvalidArgument otherwise).
+    /// finite positions within ±ScalarTraits<T>::max_size and non-zero orientations
+    /// (InvalidArgument otherwise).
     explicit Compound(std::vector<CompoundChild<T>> children);
 
     const std::vector<CompoundChild<T>>& children() const { return children_; }
@@ -66,9 +67,11 @@ Compound<T>::Compound(std::vector<CompoundChild<T>> children) : children_(std::m
     Vec3<T> weighted{};
     for (std::size_t i = 0; i < children_.size(); ++i) {
         CompoundChild<T>& c = children_[i];
-        if (!is_finite(c.local))
-            detail::report_invalid(where, ("child " + std::to_string(i) + " transform must be finite, position.x").c_str(),
-                                   static_cast<double>(c.local.position.x));
+        const std::string child = "child " + std::to_string(i);
+        // Positions within the size range (1e6 m in float), so the centre of mass, the bounds and
+        // the inertia about it stay finite (a float child at 1e38 gave an infinite shift).
+        detail::require_within_xyz(c.local.position, ScalarTraits<T>::max_size, where, (child + " local.position").c_str(), " m");
+        detail::require_orientation(c.local.orientation, where, (child + " local.orientation").c_str());
         c.local.orientation = normalized(c.local.orientation);
         const MassProperties<T> m = mass_properties(c.shape, T(1));
         mass += m.mass;
@@ -86,6 +89,8 @@ Compound<T>::Compound(std::vector<CompoundChild<T>> children) : children_(std::m
         radius_ = std::max(radius_, length(c.local.position) + xeno::bounding_radius(c.shape));
     }
     unit_mass_ = {mass, Vec3<T>::zero(), inertia};
+    if (!(is_finite(shift_) && is_finite(inertia) && std::isfinite(radius_) && is_finite(bounds_.min) && is_finite(bounds_.max)))
+        detail::report_invalid(where, "children too far apart or too large for this precision; bounding radius (m)", static_cast<double>(radius_));
 }
 
 namespace f32 { using Compound = xeno::Compound<float>; using CompoundChild = xeno::CompoundChild<float>; }

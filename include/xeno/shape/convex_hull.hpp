@@ -811,8 +811,7 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3<T>& p = points[i];
         if (!is_finite(p))
-            detail::report_invalid(where, ("point " + std::to_string(i) + " must be finite, a coordinate").c_str(),
-                                   static_cast<double>(std::isfinite(p.x) ? (std::isfinite(p.y) ? p.z : p.y) : p.x));
+            detail::require_finite_xyz(p, where, ("point " + std::to_string(i)).c_str());
         bounds.merge(p);
     }
     const T largest = std::max(max_component(abs(bounds.min)), max_component(abs(bounds.max)));

@@ -141,8 +141,7 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3<T>& v = vertices_[i];
         if (!is_finite(v))
-            detail::report_invalid(where, ("vertex " + std::to_string(i) + " must be finite, a coordinate").c_str(),
-                                   static_cast<double>(std::isfinite(v.x) ? (std::isfinite(v.y) ? v.z : v.y) : v.x));
+            detail::require_finite_xyz(v, where, ("vertex " + std::to_string(i)).c_str());
         bounds_.merge(v);
         radius_ = std::max(radius_, length(v));
     }
@@ -231,6 +230,13 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
         neighbor_offsets_[v + 1] = neighbor_offsets_[v] + degree[v];
         vertex_face_offsets_[v + 1] = vertex_face_offsets_[v] + face_degree[v];
     }
+    // One surface: every face pairs its edges with its neighbours', but two shells (a doubled
+    // surface, a copy inside the other) would too. Euler's formula V − E + F = 2 holds for one
+    // closed surface of genus 0 (a convex one) and gives 4 for two.
+    const long euler = static_cast<long>(n) - static_cast<long>(edges_.size()) + static_cast<long>(faces_.size());
+    if (euler != 2)
+        detail::report_invalid(where, "is not one closed surface (V - E + F must be 2: two shells, e.g. a doubled or nested copy?); V - E + F",
+                               static_cast<double>(euler));
     neighbors_.resize(neighbor_offsets_[n]);
     vertex_faces_.resize(vertex_face_offsets_[n]);
     std::vector<std::uint32_t> fill(neighbor_offsets_.begin(), neighbor_offsets_.end() - 1);
