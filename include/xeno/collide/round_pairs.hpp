@@ -364,8 +364,17 @@ ContactManifold<typename A::scalar_type> round_manifold(const MinkowskiDifferenc
             if ((t1 - t0) * u_length > short_span) {
                 keep(t0, p.radius() - length(outside_box(p.segment_point(t0), p.e)));
                 keep(t1, p.radius() - length(outside_box(p.segment_point(t1), p.e)));
-                // Axes crossing between the ends: the closest point is deeper than both.
-                if (count == 2 && h > std::max(depths[0], depths[1]) + T(1e-4) * md.scale()) keep(cc.t, h);
+                // Axes crossing between the ends: the closest point is deeper than both. It joins
+                // them, or stands for the end it nearly coincides with.
+                if (count == 2 && h > std::max(depths[0], depths[1]) + touching_distance(md.scale())) {
+                    const int near_end = std::abs(cc.t - ts[0]) <= std::abs(cc.t - ts[1]) ? 0 : 1;
+                    if (std::abs(cc.t - ts[near_end]) * u_length <= short_span) {
+                        ts[near_end] = cc.t;
+                        depths[near_end] = h;
+                    } else {
+                        keep(cc.t, h);
+                    }
+                }
             }
         }
     } else if (cc.face >= 0 && u_length > T(0)) {
