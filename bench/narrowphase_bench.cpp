@@ -48,7 +48,10 @@ template <class SA, class SB>
 std::pair<Poses<double>, Poses<double>> make_poses(const SA& a, const SB& b, std::uint64_t seed) {
     scenes::Random rng(seed);
     Poses<double> overlapping, separated;
-    const double reach = a.bounding_radius() + b.bounding_radius();
+    // Two spheres within their bounding spheres always overlap: their separated poses come from up
+    // to 1.25 times that reach, where their bounding boxes still overlap.
+    const double reach = (a.bounding_radius() + b.bounding_radius()) *
+                         (std::is_same_v<SA, Sphere<double>> && std::is_same_v<SB, Sphere<double>> ? 1.25 : 1.0);
     while (overlapping.a.size() < kPairs || separated.a.size() < kPairs) {
         const Transform<double> ta{rng.in_box(Vec3<double>{1, 1, 1}), rng.rotation<double>()};
         const Transform<double> tb{ta.position + rng.direction<double>() * rng.uniform(0.0, reach), rng.rotation<double>()};
