@@ -96,9 +96,10 @@ bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b,
         [&](const auto& sa, const auto& sb) {
             using SA = std::decay_t<decltype(sa)>;
             using SB = std::decay_t<decltype(sb)>;
-            if constexpr (detail::is_round_pair<SA, SB> || (std::is_same_v<SA, Box<T>> && std::is_same_v<SB, Box<T>>)) {
-                // Closed-form pairs answer from their exact contact: cheaper than MPR, and always
-                // the same answer as collide().hit.
+            // Closed-form pairs: cheaper than MPR, and always the same answer as collide().hit.
+            if constexpr (detail::is_round_pair<SA, SB>) {
+                return detail::round_intersect(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b));
+            } else if constexpr (std::is_same_v<SA, Box<T>> && std::is_same_v<SB, Box<T>>) {
                 const MinkowskiDifference<SA, SB> md(sa, pose_a, sb, pose_b);
                 Vec3<T> n, pa, pb;
                 T h;

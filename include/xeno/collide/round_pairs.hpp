@@ -261,6 +261,7 @@ struct CorePair {
     Vec3<T> segment_point(T t) const { return c + u * t; }
 };
 
+/// The reduction of a round pair (the contact not yet computed).
 template <class A, class B>
 CorePair<typename A::scalar_type> core_pair(const MinkowskiDifference<A, B>& md) {
     using T = typename A::scalar_type;
@@ -271,14 +272,12 @@ CorePair<typename A::scalar_type> core_pair(const MinkowskiDifference<A, B>& md)
         p.c = b_centre;
         p.u = md.direction_to_a(Vec3<T>{T(0), core_half_length(md.shape_b()), T(0)});
         p.radius_segment = md.shape_b().radius();
-        p.contact = core_box_contact(p.c, p.u, p.e, md.scale());
     } else if constexpr (std::is_same_v<B, Box<T>>) {
         p.b_is_box = true;
         p.e = md.shape_b().half_extents();
         p.c = md.direction_to_b(-b_centre);
         p.u = md.direction_to_b(Vec3<T>{T(0), core_half_length(md.shape_a()), T(0)});
         p.radius_segment = md.shape_a().radius();
-        p.contact = core_box_contact(p.c, p.u, p.e, md.scale());
     } else {
         p.round_round = true;
         p.e = {T(0), core_half_length(md.shape_a()), T(0)};
@@ -286,9 +285,26 @@ CorePair<typename A::scalar_type> core_pair(const MinkowskiDifference<A, B>& md)
         p.c = b_centre;
         p.u = md.direction_to_a(Vec3<T>{T(0), core_half_length(md.shape_b()), T(0)});
         p.radius_segment = md.shape_b().radius();
-        p.contact = core_core_contact(p.e.y, p.c, p.u, md.scale());
     }
     return p;
+}
+
+/// The reduction of a round pair with its contact.
+template <class A, class B>
+CorePair<typename A::scalar_type> core_pair_contact(const MinkowskiDifference<A, B>& md) {
+    CorePair<typename A::scalar_type> p = core_pair(md);
+    p.contact = p.round_round ? core_core_contact(p.e.y, p.c, p.u, md.scale()) : core_box_contact(p.c, p.u, p.e, md.scale());
+    return p;
+}
+
+/// True when a round pair overlaps: the same answer as round_contact's depth > 0 (cores within
+/// touching distance, or apart by less than the radius sum), without the normal and points.
+template <class A, class B>
+bool round_intersect(const MinkowskiDifference<A, B>& md) {
+    using T = typename A::scalar_type;
+    const CorePair<T> p = core_pair(md);
+    const T distance = length(outside_box(p.segment_point(closest_to_box(p.c, p.u, p.e)), p.e));
+    return distance <= touching_distance(md.scale()) || p.radius() - distance > T(0);
 }
 
 /// One contact in A's frame from the segment's point at t and its depth along the pair's normal:
@@ -321,7 +337,7 @@ Vec3<typename A::scalar_type> core_normal(const MinkowskiDifference<A, B>& md, c
 template <class A, class B>
 bool round_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_type>& n, typename A::scalar_type& h,
                    Vec3<typename A::scalar_type>& point_a, Vec3<typename A::scalar_type>& point_b) {
-    const auto p = core_pair(md);
+    const auto p = core_pair_contact(md);
     h = p.depth();
     if (!(h > -md.margin())) return false;
     n = core_normal(md, p);
@@ -334,7 +350,7 @@ template <class A, class B>
 ContactManifold<typename A::scalar_type> round_manifold(const MinkowskiDifference<A, B>& md) {
     using T = typename A::scalar_type;
     const T margin = md.margin();
-    const CorePair<T> p = core_pair(md);
+    const CorePair<T> p = core_pair_contact(md);
     ContactManifold<T> out;
     const T h = p.depth();
     if (!(h > -margin)) return out;
