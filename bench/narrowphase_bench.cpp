@@ -1,9 +1,12 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// Per-pair cost of the narrow phase: box–box, 32-vertex hull pairs, sphere–box and capsule–hull,
-// overlapping and separated (bounding spheres overlap, shapes do not: what a broad phase lets
-// through), float and double. libccd's MPR (ccdMPRIntersect / ccdMPRPenetration, Debian's
+// Per-pair cost of the narrow phase: box–box, 32-vertex hull pairs, capsule–hull and the pairs
+// answered in closed form (sphere–sphere, sphere–capsule, capsule–capsule, sphere–box,
+// capsule–box), overlapping and separated (bounding spheres overlap, shapes do not: what a broad
+// phase lets through), float and double. Columns: the MPR path (mpr_intersect, mpr_penetration:
+// what intersect() and collide() ran for every pair but box–box before the closed forms), the
+// public intersect() and collide(), and the world's manifold. libccd's MPR (ccdMPRIntersect / ccdMPRPenetration, Debian's
 // libccd-dev, double precision) runs on the same poses in the same process as the baseline, fed
 // with the same support functions through its void* callbacks, as a libccd user would.
 //
@@ -45,7 +48,10 @@ template <class SA, class SB>
 std::pair<Poses<double>, Poses<double>> make_poses(const SA& a, const SB& b, std::uint64_t seed) {
     scenes::Random rng(seed);
     Poses<double> overlapping, separated;
-    const double reach = a.bounding_radius() + b.bounding_radius();
+    // Two spheres within their bounding spheres always overlap: their separated poses come from up
+    // to 1.25 times that reach, where their bounding boxes still overlap.
+    const double reach = (a.bounding_radius() + b.bounding_radius()) *
+                         (std::is_same_v<SA, Sphere<double>> && std::is_same_v<SB, Sphere<double>> ? 1.25 : 1.0);
     while (overlapping.a.size() < kPairs || separated.a.size() < kPairs) {
         const Transform<double> ta{rng.in_box(Vec3<double>{1, 1, 1}), rng.rotation<double>()};
         const Transform<double> tb{ta.position + rng.direction<double>() * rng.uniform(0.0, reach), rng.rotation<double>()};
@@ -128,20 +134,23 @@ ccd_t ccd_setup() {
 
 struct Row {
     std::string pair, set, precision;
-    double intersect_ns, penetration_ns, collide_ns, manifold_ns, ccd_intersect_ns, ccd_penetration_ns;
+    double intersect_ns, penetration_ns, public_intersect_ns, collide_ns, manifold_ns, ccd_intersect_ns, ccd_penetration_ns;
 };
 
 template <class T, class SA, class SB>
 Row time_xeno(const std::string& pair, const std::string& set, const SA& a, const SB& b, const Poses<double>& poses_d) {
     const Poses<T> poses = cast<T>(poses_d);
     const Shape<T> shape_a = a, shape_b = b;
-    Row r{pair, set, std::is_same_v<T, float> ? "float" : "double", 0, 0, 0, 0, 0, 0};
+    Row r{pair, set, std::is_same_v<T, float> ? "float" : "double", 0, 0, 0, 0, 0, 0, 0};
     volatile int sink = 0;
     r.intersect_ns = ns_per_pair([&] {
         for (int i = 0; i < kPairs; ++i) sink = sink + mpr_intersect(a, poses.a[i], b, poses.b[i]);
     });
     r.penetration_ns = ns_per_pair([&] {
         for (int i = 0; i < kPairs; ++i) sink = sink + mpr_penetration(a, poses.a[i], b, poses.b[i]).hit;
+    });
+    r.public_intersect_ns = ns_per_pair([&] {
+        for (int i = 0; i < kPairs; ++i) sink = sink + intersect(shape_a, poses.a[i], shape_b, poses.b[i]);
     });
     r.collide_ns = ns_per_pair([&] {
         for (int i = 0; i < kPairs; ++i) sink = sink + collide(shape_a, poses.a[i], shape_b, poses.b[i]).hit;
@@ -239,21 +248,26 @@ TEST_CASE("narrow phase cost per pair, xeno against libccd in one run", "[summar
     both("hull32-hull32", d.hull, d.hull, f.hull, f.hull, 2);
     both("sphere-box", d.sphere, d.box, f.sphere, f.box, 3);
     both("capsule-hull32", d.capsule, d.hull, f.capsule, f.hull, 4);
+    both("sphere-sphere", d.sphere, d.sphere, f.sphere, f.sphere, 5);
+    both("sphere-capsule", d.sphere, d.capsule, f.sphere, f.capsule, 6);
+    both("capsule-capsule", d.capsule, d.capsule, f.capsule, f.capsule, 7);
+    both("capsule-box", d.capsule, d.box, f.capsule, f.box, 8);
 
     std::printf("\nNarrow phase, ns per pair (best of 7 sweeps over %d random poses; libccd is double only)\n", kPairs);
-    std::printf("%-15s %-9s %-7s %10s %12s %14s %12s | %14s %16s | %s\n", "pair", "set", "scalar", "intersect", "penetration",
-                "refined(world)", "manifold", "libccd intersect", "libccd penetration", "libccd / xeno refined");
+    std::printf("%-15s %-9s %-7s %13s %15s %11s %9s %9s | %14s %16s | %s\n", "pair", "set", "scalar", "mpr_intersect",
+                "mpr_penetration", "intersect", "collide", "manifold", "libccd intersect", "libccd penetration",
+                "libccd / xeno collide");
     for (const Row& r : rows) {
         char ratio[32] = "";
         if (r.ccd_penetration_ns > 0) std::snprintf(ratio, sizeof ratio, "%.2fx", r.ccd_penetration_ns / r.collide_ns);
-        std::printf("%-15s %-9s %-7s %10.0f %12.0f %14.0f %12.0f | %14.0f %16.0f | %s\n", r.pair.c_str(), r.set.c_str(),
-                    r.precision.c_str(), r.intersect_ns, r.penetration_ns, r.collide_ns, r.manifold_ns, r.ccd_intersect_ns,
-                    r.ccd_penetration_ns, ratio);
+        std::printf("%-15s %-9s %-7s %13.0f %15.0f %11.0f %9.0f %9.0f | %14.0f %16.0f | %s\n", r.pair.c_str(), r.set.c_str(),
+                    r.precision.c_str(), r.intersect_ns, r.penetration_ns, r.public_intersect_ns, r.collide_ns, r.manifold_ns,
+                    r.ccd_intersect_ns, r.ccd_penetration_ns, ratio);
     }
     std::printf("\n");
     accuracy("box-box", d.box, d.box, 1);
     accuracy("hull32-hull32", d.hull, d.hull, 2);
-    CHECK(rows.size() == 16);
+    CHECK(rows.size() == 32);
 }
 
 TEMPLATE_TEST_CASE("narrow phase queries", "[bench]", float, double) {

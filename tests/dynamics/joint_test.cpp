@@ -182,7 +182,11 @@ TEST_CASE_TEMPLATE("a ragdoll falls onto a step and settles with its joints hold
         return worst;
     };
     T worst_gap = T(0);
-    test::simulate(w, T(6), [&](int) { worst_gap = std::max(worst_gap, gap()); });
+    // 12 s: with exact capsule contacts a limb lying across the torso rests on one point (two
+    // crossing capsules touch at one point) and, without sleeping, may tip off it a few seconds
+    // after landing before everything is still (measured: still again by 7 s in float, 10.5 s in
+    // double). The old two points beside the other capsule propped it up, wrongly.
+    test::simulate(w, T(12), [&](int) { worst_gap = std::max(worst_gap, gap()); });
     CAPTURE(worst_gap);
     CHECK(worst_gap < T(0.03));  // soft joints give a little on impact (falling 2 m) ...
     CHECK(gap() < T(0.005));     // ... and close up at rest, to under 1 % of a limb (measured 0.3 … 2.2 mm:

@@ -385,7 +385,7 @@ TEST_CASE_TEMPLATE("collide and intersect reject non-finite poses and zero orien
         const Transform<T> bad_orientation{Vec3<T>::zero(), Quat<T>{T(1), T(0), v, T(0)}};
         CHECK_REJECTED(collide(cube, bad_position, cube, ok), "collide", "pose_a.position");
         CHECK_REJECTED(collide(cube, ok, cube, bad_orientation), "collide", "pose_b.orientation");
-        CHECK_REJECTED(intersect(cube, bad_position, cube, ok), "mpr_intersect", "pose_a.position");
+        CHECK_REJECTED(intersect(cube, bad_position, cube, ok), "intersect", "pose_a.position");
     }
     const Transform<T> zero{Vec3<T>::zero(), Quat<T>{T(0), T(0), T(0), T(0)}};
     CHECK_REJECTED(collide(cube, zero, cube, ok), "collide", "pose_a.orientation");

@@ -2,8 +2,11 @@
 // SPDX-License-Identifier: MIT
 //
 // The narrow phase as the rest of xeno calls it, for any two Shape<T>: one std::visit per pair
-// selects the MPR instantiation for the two concrete shape types (static dispatch), then
-//   intersect()          the boolean MPR test, stopping at the first portal that holds the origin;
+// selects the instantiation for the two concrete shape types (static dispatch). Spheres and
+// capsules, with each other or with a box, are answered exactly in closed form by round_pairs.hpp
+// (all three queries, their own manifolds); the other pairs as follows:
+//   intersect()          the boolean MPR test, stopping at the first portal that holds the origin
+//                        (two boxes: the separating-axis test of box_box.hpp);
 //   collide()            MPR penetration (for two boxes: the closed-form separating-axis test of
 //                        box_box.hpp, exact and cheaper), then normal refinement: MPR's normal is where the
 //                        centre line leaves A ⊖ B, not the direction of least penetration, and for a
@@ -20,14 +23,9 @@
 #include "box_box.hpp"
 #include "face_clip.hpp"
 #include "mpr.hpp"
+#include "round_pairs.hpp"
 
 namespace xeno {
-
-/// True when the shapes overlap (touching is not overlapping). Poses must be finite.
-template <class T>
-bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
-    return std::visit([&](const auto& sa, const auto& sb) { return mpr_intersect(sa, pose_a, sb, pose_b); }, a, b);
-}
 
 namespace detail {
 
@@ -67,6 +65,10 @@ template <class A, class B>
 bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_type>& n, typename A::scalar_type& h,
                      Vec3<typename A::scalar_type>& point_a, Vec3<typename A::scalar_type>& point_b) {
     using T = typename A::scalar_type;
+    if constexpr (is_round_pair<A, B>) {
+        // Spheres and capsules, with each other or a box: exact in closed form (round_pairs.hpp).
+        return round_contact(md, n, h, point_a, point_b);
+    }
     if constexpr (std::is_same_v<A, Box<T>> && std::is_same_v<B, Box<T>>) {
         // Two boxes: the exact separating axis in closed form is cheaper than MPR and exact.
         return box_box_axis(md, n, h, point_a, point_b) && h > -md.margin();
@@ -85,6 +87,30 @@ bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scala
 }
 
 }  // namespace detail
+
+/// True when the shapes overlap (touching is not overlapping). Poses must be finite (InvalidArgument).
+template <class T>
+bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
+    detail::require_finite_pose(pose_a, "intersect", "pose_a");
+    detail::require_finite_pose(pose_b, "intersect", "pose_b");
+    return std::visit(
+        [&](const auto& sa, const auto& sb) {
+            using SA = std::decay_t<decltype(sa)>;
+            using SB = std::decay_t<decltype(sb)>;
+            // Closed-form pairs: cheaper than MPR, and always the same answer as collide().hit.
+            if constexpr (detail::is_round_pair<SA, SB>) {
+                return detail::round_intersect(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b));
+            } else if constexpr (std::is_same_v<SA, Box<T>> && std::is_same_v<SB, Box<T>>) {
+                const MinkowskiDifference<SA, SB> md(sa, pose_a, sb, pose_b);
+                Vec3<T> n, pa, pb;
+                T h;
+                return detail::refined_contact(md, n, h, pa, pb) && h > T(0);
+            } else {
+                return mpr_intersect(sa, pose_a, sb, pose_b);
+            }
+        },
+        a, b);
+}
 
 /// Penetration of two shapes with the refined normal: hit, unit normal A → B (world), the overlap
 /// depth along it (> 0) and a point on each body. Poses must be finite (InvalidArgument).
@@ -122,6 +148,7 @@ ContactManifold<T> generate_contacts(const Shape<T>& a, const Transform<T>& pose
             using SA = std::decay_t<decltype(sa)>;
             using SB = std::decay_t<decltype(sb)>;
             const MinkowskiDifference<SA, SB> md(sa, pose_a, sb, pose_b, margin);
+            if constexpr (detail::is_round_pair<SA, SB>) return detail::round_manifold(md);  // their own manifolds
             Vec3<T> n, pa, pb;
             T h;
             if (!detail::refined_contact(md, n, h, pa, pb)) return ContactManifold<T>{};
