@@ -63,8 +63,8 @@ struct ConvexHull {
 /// except vertices dropped from faces too small for ConvexPolyhedron<T> (see above). Rejects
 /// (InvalidArgument, naming make_convex_hull) fewer than 4 points, a non-finite coordinate
 /// (naming the point), coordinates too large to square in T, and clouds whose points coincide,
-/// are collinear or are coplanar within the tolerance above. O(n log n) for n points in general
-/// position.
+/// are collinear or are coplanar within the tolerance above. O(n log n) for n points, measured up
+/// to 128k points on a sphere, where every point is on the hull (docs/benchmarks.md).
 template <class T>
 ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points);
 

@@ -6,8 +6,9 @@
 // and carry an outward unit normal and plane offset (n·p = offset on the face). The constructor
 // checks what the narrow phase and the mass integration rely on: finite vertices, a closed surface
 // (every edge shared by exactly two faces, in opposite directions), planar faces, and convexity
-// (every vertex on or behind every face plane). Adjacency (vertex → neighbours, vertex → faces,
-// unique edges) is built once.
+// (every vertex on or behind every face plane, asked of a tree of vertex boxes so that it costs
+// n log n, not vertices × faces). Adjacency (vertex → neighbours, vertex → faces, unique edges)
+// is built once.
 //
 // Support: a linear scan over the vertices for small hulls (what the thesis did, Quadro 14, and the
 // fastest choice below a few dozen vertices); for large ones hill climbing over the vertex graph
