@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: MIT
 #include "support/approx.hpp"
 
+#include "scenes/random.hpp"
+
 #include <xeno/shape/polyhedra.hpp>
 
 #include <string>
@@ -48,6 +50,47 @@ TEST_CASE_TEMPLATE("hill climbing and scanning agree on a prism with many sides"
         CHECK(near(dot(prism.vertices()[prism.support_index_hill_climb(d)], d),
                    dot(prism.vertices()[prism.support_index_scan(d)], d)));
     }
+}
+
+TEST_CASE_TEMPLATE("the convexity check's box tree finds a vertex in front of a plane exactly when a loop over the vertices does", T, float, double) {
+    // The constructor asks detail::VertexBoxTree whether any vertex is more than a tolerance in
+    // front of a face plane (issue 13 item 13: the loop over every vertex for every face was
+    // quadratic). Its answers must be the loop's, to the last rounding: planes are placed so the
+    // farthest vertex is just below, at, or just above the tolerance, for clouds on a sphere, in
+    // a ball, on a flat disc and far from the origin.
+    scenes::Random rng(31);
+    const T tolerance = T(1e-3);
+    int disagreements = 0, in_front = 0, queries = 0;
+    for (int cloud = 0; cloud < 8; ++cloud) {
+        const Vec3<T> offset = cloud % 4 == 3 ? Vec3<T>{T(900), T(-400), T(50)} : Vec3<T>::zero();
+        std::vector<Vec3<T>> v;
+        for (int i = 0; i < 700 + 300 * cloud; ++i) {
+            Vec3<T> p = rng.direction<T>();
+            if (cloud % 4 == 1) p = p * rng.uniform(T(0), T(1));
+            if (cloud % 4 == 2) p.y = p.y * T(1e-3);
+            v.push_back(p + offset);
+        }
+        const detail::VertexBoxTree<T> tree(v);
+        for (int k = 0; k < 300; ++k) {
+            const Vec3<T> n = rng.direction<T>();
+            T top = -ScalarTraits<T>::infinity;
+            for (const Vec3<T>& p : v) top = std::max(top, dot(n, p));
+            // At the limit, a few rounding units either side, or well clear of it.
+            const T shifts[] = {T(0), ScalarTraits<T>::epsilon * std::abs(top), -ScalarTraits<T>::epsilon * std::abs(top),
+                                T(4) * ScalarTraits<T>::epsilon * std::abs(top), T(0.5), T(-0.5)};
+            for (const T shift : shifts) {
+                const T plane = top - tolerance + shift;
+                bool loop = false;
+                for (const Vec3<T>& p : v) loop = loop || dot(n, p) - plane > tolerance;
+                if (tree.any_in_front(n, plane, tolerance) != loop) ++disagreements;
+                if (loop) ++in_front;
+                ++queries;
+            }
+        }
+    }
+    CHECK(disagreements == 0);
+    CHECK(in_front > queries / 4);  // both answers were asked for
+    CHECK(in_front < 3 * queries / 4);
 }
 
 TEST_CASE_TEMPLATE("an off-centre polyhedron keeps its origin and reports an interior centroid", T, float, double) {

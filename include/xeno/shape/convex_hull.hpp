@@ -42,6 +42,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <optional>
 #include <string>
@@ -62,8 +63,8 @@ struct ConvexHull {
 /// except vertices dropped from faces too small for ConvexPolyhedron<T> (see above). Rejects
 /// (InvalidArgument, naming make_convex_hull) fewer than 4 points, a non-finite coordinate
 /// (naming the point), coordinates too large to square in T, and clouds whose points coincide,
-/// are collinear or are coplanar within the tolerance above. O(n log n) for n points in general
-/// position.
+/// are collinear or are coplanar within the tolerance above. O(n log n) for n points, measured up
+/// to 128k points on a sphere, where every point is on the hull (docs/benchmarks.md).
 template <class T>
 ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points);
 
@@ -144,7 +145,10 @@ private:
     const std::vector<Vec3<W>>& points_;
     W tolerance_;
     std::vector<HalfEdge> edges_;
-    std::vector<Face> faces_;
+    // A deque: faces are only ever appended (a dead face keeps its index), and a vector would
+    // copy them all each time it grew: at 100k points on a sphere, half a million faces, and the
+    // copies and fresh pages were a third of the build.
+    std::deque<Face> faces_;
     std::vector<std::uint32_t> pending_;  // faces that received conflict points, in order
     std::vector<std::uint32_t> horizon_, unclaimed_, new_faces_, discarded_, scratch_, degenerate_;
     std::vector<std::uint32_t> stamp_;    // per point: last add_point that saw it on the horizon
@@ -307,7 +311,7 @@ template <class W>
 void QuickHullBuilder<W>::remove_face(std::uint32_t f) {
     faces_[f].alive = false;
     unclaimed_.insert(unclaimed_.end(), faces_[f].outside.begin(), faces_[f].outside.end());
-    faces_[f].outside.clear();
+    std::vector<std::uint32_t>().swap(faces_[f].outside);  // freed for the faces to come
 }
 
 template <class W>

@@ -6,8 +6,9 @@
 // and carry an outward unit normal and plane offset (n·p = offset on the face). The constructor
 // checks what the narrow phase and the mass integration rely on: finite vertices, a closed surface
 // (every edge shared by exactly two faces, in opposite directions), planar faces, and convexity
-// (every vertex on or behind every face plane). Adjacency (vertex → neighbours, vertex → faces,
-// unique edges) is built once.
+// (every vertex on or behind every face plane, asked of a tree of vertex boxes so that it costs
+// n log n, not vertices × faces). Adjacency (vertex → neighbours, vertex → faces, unique edges)
+// is built once.
 //
 // Support: a linear scan over the vertices for small hulls (what the thesis did, Quadro 14, and the
 // fastest choice below a few dozen vertices); for large ones hill climbing over the vertex graph
@@ -32,6 +33,121 @@
 #include <vector>
 
 namespace xeno {
+
+namespace detail {
+
+/// The vertices of a polyhedron in a balanced tree of oriented boxes, so that the constructor's
+/// convexity check ("no vertex in front of any face plane") costs about log n box tests per face
+/// instead of n dot products (the plain double loop made a 40k-vertex hull take 17 s).
+///
+/// Each node bounds its vertices by intervals along its own orthonormal frame, whose third axis
+/// points from the middle of the whole cloud to the node's. Deep nodes hold small patches of the
+/// surface, flat in that frame: a face plane can then reach only the few boxes near the face,
+/// where axis-aligned boxes, as thick as they are wide, would be reached by √n leaves per face.
+/// The box bound is computed in T; it exceeds the value computed for any vertex of the box by
+/// at most a few rounding units of the vertices' size, and a margin of 64 units covers that,
+/// so the tree answers exactly what the double loop answered.
+template <class T>
+class VertexBoxTree {
+public:
+    explicit VertexBoxTree(const std::vector<Vec3<T>>& vertices);
+    /// Whether some vertex v has dot(normal, v) - offset > tolerance (normal of unit length).
+    bool any_in_front(const Vec3<T>& normal, T offset, T tolerance) const;
+
+private:
+    static constexpr std::uint32_t leaf_size = 8;
+    static constexpr std::uint32_t no_child = 0xffffffffu;
+    struct Node {
+        Vec3<T> axis[3];             // orthonormal frame
+        T low[3], high[3];           // range of dot(axis[i], v) over the node's vertices
+        std::uint32_t begin, end;    // into points_
+        std::uint32_t second_child;  // the first is the next node; no_child for a leaf
+    };
+    std::uint32_t add_node(std::uint32_t begin, std::uint32_t end, const Vec3<T>& middle_of_all);
+
+    std::vector<Vec3<T>> points_;  // the vertices, each node's a contiguous range
+    std::vector<Node> nodes_;      // depth first: a subtree is contiguous, kind to the cache
+    T margin_ = T(0);              // metres: rounding allowance of the box bounds
+};
+
+template <class T>
+VertexBoxTree<T>::VertexBoxTree(const std::vector<Vec3<T>>& vertices) : points_(vertices) {
+    Aabb<T> all;
+    T radius = T(0);
+    for (const Vec3<T>& v : vertices) {
+        all.merge(v);
+        radius = std::max(radius, length(v));
+    }
+    margin_ = T(64) * ScalarTraits<T>::epsilon * radius;
+    nodes_.reserve(4 * (points_.size() / leaf_size + 1));
+    add_node(0, static_cast<std::uint32_t>(points_.size()), all.center());
+}
+
+template <class T>
+std::uint32_t VertexBoxTree<T>::add_node(std::uint32_t begin, std::uint32_t end, const Vec3<T>& middle_of_all) {
+    // The node is bounded in its frame, then split at the median along the frame axis of its
+    // widest extent: a balanced tree (depth log2(n / leaf_size), so this recursion is shallow)
+    // of compact patches.
+    Node node{};
+    node.begin = begin;
+    node.end = end;
+    node.second_child = no_child;
+    Aabb<T> box;
+    for (std::uint32_t k = begin; k < end; ++k) box.merge(points_[k]);
+    node.axis[2] = try_normalized(box.center() - middle_of_all).value_or(Vec3<T>::unit_z());
+    node.axis[0] = any_perpendicular(node.axis[2]);
+    node.axis[1] = cross(node.axis[2], node.axis[0]);
+    for (int i = 0; i < 3; ++i) {
+        node.low[i] = ScalarTraits<T>::infinity;
+        node.high[i] = -ScalarTraits<T>::infinity;
+        for (std::uint32_t k = begin; k < end; ++k) {
+            const T along = dot(node.axis[i], points_[k]);
+            node.low[i] = std::min(node.low[i], along);
+            node.high[i] = std::max(node.high[i], along);
+        }
+    }
+    const std::uint32_t index = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.push_back(node);
+    if (end - begin <= leaf_size) return index;
+    const Vec3<T> extent{node.high[0] - node.low[0], node.high[1] - node.low[1], node.high[2] - node.low[2]};
+    const Vec3<T> axis = node.axis[max_axis(extent)];
+    const std::uint32_t middle = begin + (end - begin) / 2;
+    std::nth_element(points_.begin() + begin, points_.begin() + middle, points_.begin() + end,
+                     [&](const Vec3<T>& a, const Vec3<T>& b) { return dot(axis, a) < dot(axis, b); });
+    add_node(begin, middle, middle_of_all);
+    const std::uint32_t second = add_node(middle, end, middle_of_all);
+    nodes_[index].second_child = second;
+    return index;
+}
+
+template <class T>
+bool VertexBoxTree<T>::any_in_front(const Vec3<T>& normal, T offset, T tolerance) const {
+    // Depth first; a balanced tree of fewer than 2^32 vertices is at most 32 levels deep, and the
+    // stack holds at most one waiting sibling per level.
+    std::uint32_t stack[64];
+    std::size_t size = 0;
+    stack[size++] = 0;
+    while (size > 0) {
+        const std::uint32_t index = stack[--size];
+        const Node& node = nodes_[index];
+        T reach = margin_;  // the largest dot(normal, v) in the box, plus the margin
+        for (int i = 0; i < 3; ++i) {
+            const T along = dot(normal, node.axis[i]);
+            reach += along * (along >= T(0) ? node.high[i] : node.low[i]);
+        }
+        if (!(reach - offset > tolerance)) continue;  // no vertex of the box is in front
+        if (node.second_child == no_child) {
+            for (std::uint32_t k = node.begin; k < node.end; ++k)
+                if (dot(normal, points_[k]) - offset > tolerance) return true;
+            continue;
+        }
+        stack[size++] = node.second_child;
+        stack[size++] = index + 1;
+    }
+    return false;
+}
+
+}  // namespace detail
 
 /// A closed convex polyhedron with polygon faces and adjacency.
 template <class T>
@@ -207,17 +323,28 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
     for (std::size_t i = 0; i + 1 < directed_edges.size(); ++i)
         if (directed_edges[i] == directed_edges[i + 1])
             detail::report_invalid(where, "is not a closed 2-manifold (an edge is used twice in one direction; check face winding), vertex", static_cast<double>(directed_edges[i].first));
+    // Each edge's reverse is there when the reversed edges, sorted, are the same list (one sort
+    // instead of a binary search per edge); else the search finds the edge to report.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> reversed;
+    reversed.reserve(directed_edges.size());
+    for (const auto& e : directed_edges) reversed.emplace_back(e.second, e.first);
+    std::sort(reversed.begin(), reversed.end());
+    const bool closed = reversed == directed_edges;
     for (const auto& e : directed_edges) {
-        if (!std::binary_search(directed_edges.begin(), directed_edges.end(), std::make_pair(e.second, e.first)))
+        if (!closed && !std::binary_search(directed_edges.begin(), directed_edges.end(), std::make_pair(e.second, e.first)))
             detail::report_invalid(where, "is not closed (an edge belongs to only one face), vertex", static_cast<double>(e.first));
         if (e.first < e.second) edges_.push_back(e);
     }
 
-    // Convex: no vertex in front of any face plane.
-    for (const Face& f : faces_)
+    // Convex: no vertex in front of any face plane. The box tree finds the faces that fail; the
+    // scan of such a face only picks the vertex to report (the first, in index order).
+    const detail::VertexBoxTree<T> vertex_tree(vertices_);
+    for (const Face& f : faces_) {
+        if (!vertex_tree.any_in_front(f.normal, f.offset, tolerance)) continue;
         for (const Vec3<T>& v : vertices_)
             if (dot(f.normal, v) - f.offset > tolerance)
                 detail::report_invalid(where, "is not convex; a vertex lies in front of a face plane by (m)", static_cast<double>(dot(f.normal, v) - f.offset));
+    }
 
     // Adjacency in compressed rows.
     std::vector<std::uint32_t> degree(n, 0), face_degree(n, 0);
