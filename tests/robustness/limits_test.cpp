@@ -326,3 +326,20 @@ TEST_CASE_TEMPLATE("regression: error messages name the bad component and its va
                            Shape<T>(Sphere<T>(T(1))), Transform<T>{}),
                    "pose_a.position.y", "(got nan)");
 }
+
+TEST_CASE_TEMPLATE("a body at a huge finite speed beside a destroyed one keeps finite boxes and never meets the dead slot", T, float, double) {
+    // Found by the world fuzzer: a velocity of 10^38 made the body's broad-phase box infinite,
+    // and an infinite box overlapped the empty box of a free slot, so a destroyed body reached
+    // the narrow phase. Boxes and margins now use the speed within the integrator's cap.
+    World<T> w;
+    BodyDef<T> d;
+    const BodyId dead = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    d.position = {T(3), T(0), T(0)};
+    const BodyId fast = w.create_body(Sphere<T>(T(0.5)), d);
+    w.destroy_body(dead);
+    w.body(fast).set_linear_velocity({std::numeric_limits<T>::max() / T(4), T(0), T(0)});
+    for (int i = 0; i < 3; ++i) w.step(T(1) / T(60));
+    CHECK(w.body_count() == 1);
+    CHECK(is_finite(w.body(fast).position()));
+    CHECK(length(w.body(fast).linear_velocity()) <= w.settings().max_linear_speed * T(1.0001));
+}

@@ -275,6 +275,11 @@ private:
         return b.type_ == BodyType::kinematic &&
                (length_squared(b.linear_velocity_) > T(0) || length_squared(b.angular_velocity_) > T(0));
     }
+    /// The speed cap of the integrator: the settings' for most bodies, 1e6 m/s (float) for fast ones.
+    T speed_limit(const Body<T>& b) const { return b.fast_ ? detail::max_setting_length<T>() : settings_.max_linear_speed; }
+    /// How fast the body can travel this step (its speed within the cap; a velocity whose length
+    /// overflows is capped like any other), for boxes and margins that must stay finite.
+    T travel_speed(const Body<T>& b) const { return std::min(length(b.linear_velocity_), speed_limit(b)); }
     void update_bounds(T dt);
     void narrow_phase(T dt);
     void wake_touched_islands(T dt);
@@ -776,7 +781,7 @@ void World<T>::update_bounds(T dt) {
         Body<T>& b = bodies_[i];
         if (!b.alive_) continue;
         if (b.type_ == BodyType::static_body && !b.moved_) continue;
-        const T reach = settings_.speculative_distance + length(b.linear_velocity_) * dt;
+        const T reach = settings_.speculative_distance + travel_speed(b) * dt;
         bounds_[i] = b.world_bounds().expanded(reach);
         b.moved_ = false;
     }
@@ -797,7 +802,9 @@ void World<T>::narrow_phase(T dt) {
         while (old_end < contacts_.size() && contacts_[old_end].a.index == pair.a && contacts_[old_end].b.index == pair.b) ++old_end;
         const Body<T>& a = bodies_[pair.a];
         const Body<T>& b = bodies_[pair.b];
-        const bool wanted = (a.type_ == BodyType::dynamic || b.type_ == BodyType::dynamic) && (a.layer_ & b.mask_) &&
+        // (A free slot's box is empty and pairs with nothing; checked anyway, so a broad phase
+        // can never hand a destroyed body to the narrow phase.)
+        const bool wanted = a.alive_ && b.alive_ && (a.type_ == BodyType::dynamic || b.type_ == BodyType::dynamic) && (a.layer_ & b.mask_) &&
                             (b.layer_ & a.mask_) &&
                             !std::binary_search(unconnected_pairs_.begin(), unconnected_pairs_.end(), pair_key(pair.a, pair.b)) &&
                             filter_allows(pair.a, pair.b);
@@ -812,7 +819,7 @@ void World<T>::narrow_phase(T dt) {
             }
             continue;
         }
-        const T margin = settings_.speculative_distance + (length(a.linear_velocity_) + length(b.linear_velocity_)) * dt;
+        const T margin = settings_.speculative_distance + (travel_speed(a) + travel_speed(b)) * dt;
         collide_pair(pair, margin, old, old_end, next);
         old = old_end;
     }
@@ -1077,7 +1084,7 @@ void World<T>::solve(T dt) {
         }
         for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
             const Body<T>& b = bodies_[solver_slot_[i]];
-            const T max_speed = b.fast_ ? detail::max_setting_length<T>() : settings_.max_linear_speed;  // fast: 1e6 m/s (float)
+            const T max_speed = speed_limit(b);
             integrate_position(solver_bodies_[i], h, max_speed, max_rotation);
         }
         pass.use_bias = false;
