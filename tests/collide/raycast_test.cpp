@@ -180,7 +180,8 @@ TEST_CASE_TEMPLATE("regression: far rays hit spheres and capsules within 1e-5 (f
     for (int k = 0; k <= max_axis_power; ++k) {
         const T far = static_cast<T>(std::pow(10.0L, static_cast<long double>(k)));
         CAPTURE(far);
-        for (const auto& [y0, z0] : offsets) {
+        for (const std::pair<T, T>& offset : offsets) {
+            const T y0 = offset.first, z0 = offset.second;  // not a structured binding: clang++ 14 cannot capture one in CAPTURE's lambda
             CAPTURE(y0);
             CAPTURE(z0);
             // Sphere, along -x: enters at x = √(1 − y0² − z0²).

@@ -246,7 +246,8 @@ TEST_CASE_TEMPLATE("regression: lengths and speeds in the settings beyond their 
         {"gravity.x", [](WorldSettings<T>& s, T v) { s.gravity.x = v; }},
     };
     for (const auto& [name, edit] : fields) {
-        INFO(std::string(name));
+        const std::string field = name;  // clang++ 14 cannot capture a structured binding in INFO's lambda
+        INFO(field);
         for (const T v : {detail::max_setting_length<T>() * T(2), T(1e38), std::numeric_limits<T>::max()}) {
             WorldSettings<T> s;
             edit(s, v);
@@ -281,7 +282,8 @@ TEST_CASE_TEMPLATE("regression: settings reject unknown enum values and iteratio
         {"max_steps_per_update", [](WorldSettings<T>& x, int v) { x.max_steps_per_update = v; }, 1000},
     };
     for (const auto& [name, edit, limit] : counts) {
-        INFO(std::string(name));
+        const std::string field = name;  // as above
+        INFO(field);
         for (const int v : {limit + 1, 1000000, INT_MAX}) {
             WorldSettings<T> x;
             edit(x, v);
