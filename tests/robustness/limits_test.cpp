@@ -345,3 +345,23 @@ TEST_CASE_TEMPLATE("a body at a huge finite speed beside a destroyed one keeps f
     CHECK(is_finite(w.body(fast).position()));
     CHECK(length(w.body(fast).linear_velocity()) <= w.settings().max_linear_speed * T(1.0001));
 }
+
+TEST_CASE_TEMPLATE("a kinematic body at the largest finite speed touching a dynamic one leaves every state finite", T, float, double) {
+    // Found by the world fuzzer: a kinematic body set to 1.5e308 m/s entered the contact rows
+    // uncapped and made both bodies NaN; velocities now enter the solver within the caps.
+    World<T> w;
+    BodyDef<T> k;
+    k.type = BodyType::kinematic;
+    const BodyId pusher = w.create_body(Box<T>(T(1), T(1), T(1)), k);
+    BodyDef<T> d;
+    d.position = {T(1.9), T(0), T(0)};
+    const BodyId pushed = w.create_body(Sphere<T>(T(0.5)), d);
+    const T huge = std::numeric_limits<T>::max() / T(2);
+    w.body(pusher).set_linear_velocity({huge, -huge, huge});
+    for (int i = 0; i < 3; ++i) w.step(T(1) / T(60));
+    for (const BodyId id : {pusher, pushed}) {
+        CHECK(is_finite(w.body(id).position()));
+        CHECK(is_finite(w.body(id).linear_velocity()));
+        CHECK(is_finite(w.body(id).angular_velocity()));
+    }
+}

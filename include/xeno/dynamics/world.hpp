@@ -956,8 +956,11 @@ void World<T>::prepare(T dt) {
         if (!b.alive_ || b.type_ == BodyType::static_body || !b.awake_) continue;
         solver_index_[i] = static_cast<std::uint32_t>(solver_bodies_.size());
         SolverBody<T> s;
-        s.v = b.linear_velocity_;
-        s.w = b.angular_velocity_;
+        // Velocities enter the solver within the integrator's caps: any finite velocity is
+        // accepted at the door, and a kinematic body at 1e308 m/s made every row it touched NaN
+        // (found by the world fuzzer).
+        s.v = detail::capped_length(b.linear_velocity_, speed_limit(b));
+        s.w = detail::capped_length(b.angular_velocity_, settings_.max_rotation_per_step / dt);
         s.inv_mass = b.inverse_mass_;
         s.inv_inertia = b.type_ == BodyType::dynamic ? b.inverse_inertia_world() : Mat3<T>::zero();
         solver_bodies_.push_back(s);
