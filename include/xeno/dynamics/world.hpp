@@ -761,15 +761,22 @@ void World<T>::report_events() {
         return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
     });
     if (listener_) {
-        // The listener may change the world (and so events_): it is handed a copy kept between
-        // steps, and each call holds the listener alive even if it replaces or clears itself.
-        delivered_events_ = events_;
-        const FlagScope scope(in_listener_);
-        for (const ContactEvent<T>& e : delivered_events_) {
-            if (!listener_) break;  // cleared from inside
-            const std::shared_ptr<const Listener> current = listener_;
-            (*current)(*this, e);
+        // The listener may change the world (and so events_; restore_snapshot replaces every
+        // member): it is handed a copy held in a local vector, whose buffer is the world's scratch
+        // taken out for the call and given back after, so a settled step allocates nothing. Each
+        // call holds the listener alive even if it replaces or clears itself.
+        std::vector<ContactEvent<T>> delivering;
+        delivering.swap(delivered_events_);
+        delivering = events_;
+        {
+            const FlagScope scope(in_listener_);
+            for (const ContactEvent<T>& e : delivering) {
+                if (!listener_) break;  // cleared from inside
+                const std::shared_ptr<const Listener> current = listener_;
+                (*current)(*this, e);
+            }
         }
+        delivered_events_.swap(delivering);
     }
 }
 
