@@ -111,23 +111,26 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
     pairs.clear();
     const std::size_t n = boxes.size();
     constexpr T inf = ScalarTraits<T>::infinity;
-    // 1. Spread of the centres (variance and range over non-empty boxes).
-    Vec3<T> sum{}, sum_sq{};
+    // 1. Spread of the centres (variance and range over non-empty boxes). Two passes, the mean
+    //    summed from c / live: no sum of squares that overflows to inf - inf for centres far out
+    //    (a variance may still be inf, which picks that axis, but never NaN).
+    Vec3<T> mean{};
     Vec3<T> low = Vec3<T>::one() * inf, high = -low;
     std::size_t live = 0;
-    for (const Aabb<T>& b : boxes) {
-        if (b.empty()) continue;
-        const Vec3<T> c = b.center();
-        sum += c;
-        sum_sq += hadamard(c, c);
-        low = min(low, c);
-        high = max(high, c);
-        ++live;
-    }
+    for (const Aabb<T>& b : boxes) live += b.empty() ? 0 : 1;
     int axis = 0;
     if (live > 0) {
         const T inv = T(1) / static_cast<T>(live);
-        const Vec3<T> variance = sum_sq * inv - hadamard(sum * inv, sum * inv);
+        for (const Aabb<T>& b : boxes)
+            if (!b.empty()) mean += b.center() * inv;
+        Vec3<T> variance{};
+        for (const Aabb<T>& b : boxes) {
+            if (b.empty()) continue;
+            const Vec3<T> c = b.center();
+            variance += hadamard(c - mean, c - mean) * inv;
+            low = min(low, c);
+            high = max(high, c);
+        }
         axis = max_axis(variance);
     }
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;

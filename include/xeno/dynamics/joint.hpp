@@ -18,6 +18,7 @@
 #pragma once
 
 #include "body.hpp"
+#include "integrator.hpp"
 #include "solver_body.hpp"
 
 #include <optional>
@@ -116,6 +117,10 @@ struct JointConstraint {
     Quat<T> qa0{}, qb0{};         ///< orientations at the start of the step
     Softness<T> softness{};
     Softness<T> limit_softness{};  ///< the contacts' (heavily damped): a limit is a contact in angle
+    /// m/s: cap on the speed at which a stretched joint is pulled together (the world's speed
+    /// cap: a faster pull would be cut by the integrator anyway). Also what keeps a joint torn
+    /// 1e35 m apart (a teleport, a restored snapshot) from overflowing its impulse to inf − inf.
+    T max_bias_speed = ScalarTraits<T>::infinity;
 };
 
 namespace detail {
@@ -167,11 +172,13 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
     if (j.type == JointType::distance) {
         const Vec3<T> d = (b.dp - a.dp) + c.delta_center + rb - ra;
         const T len = length(d);
-        const Vec3<T> n = len > T(0) ? d / len : Vec3<T>::unit_y();
+        // (A length that overflows still has a direction: capped_length scales before squaring.)
+        const Vec3<T> n = !std::isfinite(len) ? detail::capped_length(d, T(1)) : len > T(0) ? d / len : Vec3<T>::unit_y();
         const Vec3<T> rna = cross(ra, n), rnb = cross(rb, n);
         const T k = a.inv_mass + b.inv_mass + dot(rna, a.inv_inertia * rna) + dot(rnb, b.inv_inertia * rnb);
         if (k > T(0)) {
-            const T cdot = dot(b.velocity_at(rb) - a.velocity_at(ra), n) + bias_rate * (len - j.length);
+            const T bias = bias_rate > T(0) ? clamp(bias_rate * (len - j.length), -c.max_bias_speed, c.max_bias_speed) : T(0);
+            const T cdot = dot(b.velocity_at(rb) - a.velocity_at(ra), n) + bias;
             const T delta = -mass_scale * cdot / k - impulse_scale * j.axial_impulse;
             j.axial_impulse += delta;
             a.apply(ra, -n * delta);
@@ -185,7 +192,8 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
                       detail::point_mass_term(rb, b.inv_inertia);
     if (const std::optional<Mat3<T>> k_inv = try_inverse(k)) {
         const Vec3<T> separation = (b.dp - a.dp) + c.delta_center + rb - ra;
-        const Vec3<T> cdot = b.velocity_at(rb) - a.velocity_at(ra) + separation * bias_rate;
+        const Vec3<T> bias = bias_rate > T(0) ? detail::capped_length(separation * bias_rate, c.max_bias_speed) : Vec3<T>::zero();
+        const Vec3<T> cdot = b.velocity_at(rb) - a.velocity_at(ra) + bias;
         const Vec3<T> impulse = (*k_inv * cdot) * (-mass_scale) - j.linear_impulse * impulse_scale;
         j.linear_impulse += impulse;
         a.apply(ra, -impulse);

@@ -287,6 +287,7 @@ private:
     void prepare(T dt);
     void solve(T dt);
     void finish();
+    void discard_overflowed_solve();
     void update_sleep(T dt);
     void report_events();
     void wake_contacts_of(std::uint32_t slot);
@@ -561,6 +562,7 @@ void World<T>::prepare_joints(T h) {
         c.qb0 = b.orientation_;
         c.softness = settings_.solver == SolverMode::soft_step ? soft : Softness<T>::make(T(0.25) / h, T(1), h);
         c.limit_softness = settings_.solver == SolverMode::soft_step ? limit_soft : c.softness;
+        c.max_bias_speed = settings_.max_linear_speed;
         if (!settings_.warm_starting) {
             j.linear_impulse = j.angular_impulse = Vec3<T>::zero();
             j.axial_impulse = j.motor_impulse = T(0);
@@ -1112,6 +1114,7 @@ void World<T>::solve(T dt) {
 
 template <class T>
 void World<T>::finish() {
+    discard_overflowed_solve();
     for (const ContactConstraint<T>& c : constraints_) {
         Manifold<T>& m = contacts_[c.manifold].manifold;
         for (int i = 0; i < c.count; ++i) {
@@ -1135,6 +1138,44 @@ void World<T>::finish() {
         b.angular_velocity_ = s.w;
         b.force_ = Vec3<T>::zero();
         b.torque_ = Vec3<T>::zero();
+    }
+}
+
+/// The last line of defence against the range of T (docs/robustness.md, "Range of T"): inputs
+/// that are each accepted (a fast body at 10³⁰ m/s, a shape 10²⁵ m across, a restitution of 1)
+/// can still multiply past the largest T in a contact or joint row, and one inf − inf spreads
+/// NaN through an island. A body whose solver state is not finite after the step keeps its
+/// start-of-step velocity and does not move this step; the impulses of the rows that
+/// touched it are dropped, so that next step's warm start does not bring the overflow back.
+/// Never taken by a step whose values stay within the documented range.
+template <class T>
+void World<T>::discard_overflowed_solve() {
+    bool overflowed = false;
+    for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
+        SolverBody<T>& s = solver_bodies_[i];
+        if (is_finite(s.v) && is_finite(s.w) && is_finite(s.dp) && is_finite(s.dq)) continue;
+        const Body<T>& b = bodies_[solver_slot_[i]];
+        s.v = b.linear_velocity_;  // finite: checked where it entered
+        s.w = b.angular_velocity_;
+        s.dp = Vec3<T>::zero();
+        s.dq = Quat<T>::identity();
+        overflowed = true;
+    }
+    if (!overflowed) return;
+    for (ContactConstraint<T>& c : constraints_) {
+        bool finite = std::isfinite(c.friction_1) && std::isfinite(c.friction_2) && std::isfinite(c.twist_impulse);
+        for (int i = 0; i < c.count; ++i) finite = finite && std::isfinite(c.points[static_cast<std::size_t>(i)].step_impulse);
+        if (finite) continue;
+        for (int i = 0; i < c.count; ++i) {
+            ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
+            p.normal_impulse = p.max_normal_impulse = p.step_impulse = T(0);
+        }
+        c.friction_1 = c.friction_2 = c.twist_impulse = T(0);
+    }
+    for (Joint<T>& j : joints_) {
+        if (is_finite(j.linear_impulse) && is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) && std::isfinite(j.motor_impulse)) continue;
+        j.linear_impulse = j.angular_impulse = Vec3<T>::zero();
+        j.axial_impulse = j.motor_impulse = T(0);
     }
 }
 

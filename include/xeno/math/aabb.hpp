@@ -23,7 +23,9 @@ struct Aabb {
     }
 
     constexpr bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
-    constexpr Vec3<T> center() const { return (min + max) * T(0.5); }
+    // Halved first: the same bits as (min + max) / 2 wherever that does not overflow, and finite
+    // for boxes far out near the largest T.
+    constexpr Vec3<T> center() const { return min * T(0.5) + max * T(0.5); }
     constexpr Vec3<T> half_extents() const { return (max - min) * T(0.5); }
     /// Area of the six faces (the cost measure of AABB trees).
     constexpr T surface_area() const {
