@@ -29,6 +29,16 @@ enum class BroadPhaseKind {
 
 namespace detail {
 inline void sort_pairs(std::vector<ProxyPair>& pairs) { std::sort(pairs.begin(), pairs.end()); }
+
+/// A well-spread 64-bit hash of a pair of slots (the SplitMix64 finaliser, Steele, Lea and
+/// Flood, "Fast splittable pseudorandom number generators", OOPSLA 2014): the world's
+/// deterministic coin when it must keep only some pairs of a crowd.
+inline std::uint64_t mix_pair(std::uint32_t a, std::uint32_t b) {
+    std::uint64_t z = (static_cast<std::uint64_t>(a) << 32 | b) + 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
 }  // namespace detail
 
 }  // namespace xeno

@@ -62,6 +62,12 @@ struct WorldSettings {
     T sleep_time = T(0.5);            ///< s
 
     BroadPhaseKind broad_phase = BroadPhaseKind::sweep_and_prune;
+    /// Most broad-phase pairs (with a dynamic side) a step collides and solves. Beyond it (a
+    /// crowd: 3,000 bodies spawned at one point overlap in 4.5 million pairs) the pairs of the
+    /// crowded bodies are thinned, each body keeping a share, so a step's time and memory stay
+    /// bounded while the crowd pushes itself apart (docs/robustness.md, "Crowds"). 131,072 pairs
+    /// is about 40,000 bodies resting in piles; StepStats::dropped_pairs says when it was hit.
+    int max_contact_pairs = 1 << 17;
 };
 
 namespace detail {
@@ -73,6 +79,7 @@ struct SettingsLimits {
     static constexpr int max_iterations = 256;        ///< velocity_iterations and relax_iterations
     static constexpr int max_joint_iterations = 64;
     static constexpr int max_steps_per_update = 1000;
+    static constexpr int max_contact_pairs = 1 << 30;
 };
 
 /// The largest length (m), speed (m/s) or acceleration (m/s²) a setting may have: 10⁶ in float
@@ -111,6 +118,7 @@ void validate(const WorldSettings<T>& s) {
     require_count(s.velocity_iterations, 1, SettingsLimits::max_iterations, w, "velocity_iterations");
     require_count(s.relax_iterations, 0, SettingsLimits::max_iterations, w, "relax_iterations");
     require_count(s.joint_iterations, 1, SettingsLimits::max_joint_iterations, w, "joint_iterations");
+    require_count(s.max_contact_pairs, 1, SettingsLimits::max_contact_pairs, w, "max_contact_pairs");
     require_positive(s.contact_hertz, w, "contact_hertz");
     require_non_negative(s.contact_damping_ratio, w, "contact_damping_ratio");
     require_positive(s.static_contact_hertz_scale, w, "static_contact_hertz_scale");

@@ -121,7 +121,7 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 1;
+constexpr std::uint32_t kSnapshotVersion = 2;  // 2: WorldSettings::max_contact_pairs
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {

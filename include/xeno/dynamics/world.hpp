@@ -82,6 +82,7 @@ struct WorldRayHit {
 /// Counters of the last step, for benchmarks and tests.
 struct StepStats {
     std::size_t broad_pairs = 0;     ///< pairs whose boxes overlapped
+    std::size_t dropped_pairs = 0;   ///< of those, left out: more than settings.max_contact_pairs (a crowd)
     std::size_t contacts = 0;        ///< manifolds with at least one point
     std::size_t contact_points = 0;  ///< rows solved
     std::size_t awake_bodies = 0;
@@ -286,6 +287,7 @@ private:
     bool closes_within_step(const Contact<T>& c, T dt) const;
     void prepare(T dt);
     void solve(T dt);
+    void thin_crowded_pairs();
     void finish();
     void discard_overflowed_solve();
     void update_sleep(T dt);
@@ -322,6 +324,8 @@ private:
     std::vector<std::uint32_t> island_parent_;    ///< union–find parents per slot (wake, sleep)
     std::vector<std::uint8_t> island_flag_;       ///< per island root: wake it
     std::vector<T> island_sleep_time_;            ///< per island root: the least sleep clock
+    std::vector<std::uint32_t> pair_degree_;      ///< per slot: broad-phase pairs (crowd thinning)
+    std::vector<std::uint64_t> crowd_histogram_;  ///< pairs by crowd size (crowd thinning)
     std::vector<ContactEvent<T>> delivered_events_;  ///< the listener's copy of events_
     bool in_filter_ = false;    ///< the contact filter is running: mutating calls are rejected
     bool in_listener_ = false;  ///< the contact listener is running: step() and update() are rejected
@@ -723,6 +727,7 @@ void World<T>::step(T dt) {
         case BroadPhaseKind::aabb_tree: tree_.find_pairs(bounds_, pairs_); break;
     }
     stats_.broad_pairs = pairs_.size();
+    thin_crowded_pairs();
     narrow_phase(dt);
     wake_touched_islands(dt);
     prepare(dt);
@@ -732,10 +737,68 @@ void World<T>::step(T dt) {
     report_events();
 }
 
+/// Bounds a step's work when more pairs overlap than max_contact_pairs (thousands of bodies
+/// spawned at one point: n²/2 pairs, once 39 s and gigabytes for a step). Pairs with a static or
+/// kinematic side are always kept (what holds a crowd up; a body has few of them) and use up the
+/// budget first. Among pairs of two dynamic bodies, a pair's crowd is the larger pair count of
+/// its bodies: pairs of crowd ≤ k are all kept, a pair of crowd c > k with probability k / c,
+/// decided by a hash of the two slots (deterministic, the same pairs every step until the crowd
+/// thins out). So every crowded body keeps about k partners and the crowd pushes itself apart,
+/// while bodies elsewhere keep all of theirs. k is the largest quota whose expected total fits
+/// the budget; a hard cap takes care of the rest.
+template <class T>
+void World<T>::thin_crowded_pairs() {
+    const std::uint64_t budget = static_cast<std::uint64_t>(settings_.max_contact_pairs);
+    if (pairs_.size() <= budget) return;
+    auto both_dynamic = [&](const ProxyPair& p) {
+        return bodies_[p.a].type_ == BodyType::dynamic && bodies_[p.b].type_ == BodyType::dynamic;
+    };
+    std::vector<std::uint32_t>& degree = pair_degree_;
+    degree.assign(bodies_.size(), 0u);
+    std::uint64_t fixed = 0;  // pairs with a static or kinematic side
+    for (const ProxyPair& p : pairs_) {
+        if (!both_dynamic(p)) {
+            ++fixed;
+            continue;
+        }
+        ++degree[p.a];
+        ++degree[p.b];
+    }
+    const std::uint64_t room = budget > fixed ? budget - fixed : 0;
+    if (pairs_.size() - fixed <= room) return;
+    auto crowd = [&](const ProxyPair& p) { return std::max(degree[p.a], degree[p.b]); };
+    std::vector<std::uint64_t>& histogram = crowd_histogram_;  // pairs of two dynamic bodies by crowd
+    histogram.assign(*std::max_element(degree.begin(), degree.end()) + std::size_t(1), 0u);
+    for (const ProxyPair& p : pairs_)
+        if (both_dynamic(p)) ++histogram[crowd(p)];
+    auto expected = [&](std::uint64_t k) {  // pairs kept for quota k (floored per crowd size)
+        std::uint64_t sum = 0;
+        for (std::uint64_t c = 1; c < histogram.size(); ++c) sum += c <= k ? histogram[c] : histogram[c] * k / c;
+        return sum;
+    };
+    std::uint64_t low = 0, high = histogram.size() - 1;  // expected(low) ≤ room < expected(high)
+    while (high - low > 1) {
+        const std::uint64_t mid = low + (high - low) / 2;
+        (expected(mid) <= room ? low : high) = mid;
+    }
+    const std::uint64_t quota = low;
+    std::uint64_t kept = 0;
+    const auto dropped = std::remove_if(pairs_.begin(), pairs_.end(), [&](const ProxyPair& p) {
+        if (!both_dynamic(p)) return false;
+        const std::uint64_t c = crowd(p);
+        const bool keep = kept < room && (c <= quota || detail::mix_pair(p.a, p.b) % c < quota);
+        kept += keep ? 1 : 0;
+        return !keep;
+    });
+    stats_.dropped_pairs = static_cast<std::size_t>(pairs_.end() - dropped);
+    pairs_.erase(dropped, pairs_.end());
+}
+
 template <class T>
 void World<T>::report_events() {
     events_.swap(events_pending_);  // ended events recorded since the last report come first
     events_pending_.clear();
+    events_.reserve(events_.size() + contacts_.size());
     for (const Contact<T>& c : contacts_) {
         if (!c.touching && !c.was_touching) continue;
         // A pair with no active body (both asleep, or asleep on a static body) is not
@@ -800,6 +863,7 @@ template <class T>
 void World<T>::narrow_phase(T dt) {
     std::vector<Contact<T>>& next = next_contacts_;
     next.clear();
+    next.reserve(pairs_.size());  // most pairs give one contact: no copies while growing (a crowd's first step)
     std::size_t old = 0;
     for (const ProxyPair& pair : pairs_) {
         // Merge-join with last step's contacts (both sorted by body pair, then by parts): those
@@ -981,6 +1045,7 @@ void World<T>::prepare(T dt) {
 
     // Contact rows.
     constraints_.clear();
+    constraints_.reserve(contacts_.size());
     const T contact_hertz = std::min(settings_.contact_hertz, T(0.125) / h);
     const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
     const Softness<T> soft_static =
