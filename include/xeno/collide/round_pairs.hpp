@@ -154,15 +154,25 @@ T touching_distance(T scale) {
 }
 
 /// A round shape's core (segment c ± u) against a box of half extents e > 0, in the box's frame.
+/// Step 1 of both core contacts: the segment c ± u's parameter t closest to the box of half
+/// extents e (≥ 0), and the offset from the box to that point. Sets out.gap and out.normal and
+/// returns true when the two are apart by more than touching_distance.
+template <class T>
+bool core_apart(const Vec3<T>& c, const Vec3<T>& u, const Vec3<T>& e, T scale, CoreContact<T>& out, Vec3<T>& offset) {
+    out.t = closest_to_box(c, u, e);
+    offset = outside_box(c + u * out.t, e);
+    const T distance = length(offset);
+    if (!(distance > touching_distance(scale))) return false;
+    out.gap = distance;
+    out.normal = offset / distance;
+    return true;
+}
+
 template <class T>
 CoreContact<T> core_box_contact(const Vec3<T>& c, const Vec3<T>& u, const Vec3<T>& e, T scale) {
     CoreContact<T> out;
-    out.t = closest_to_box(c, u, e);
-    const Vec3<T> offset = outside_box(c + u * out.t, e);
-    const T distance = length(offset);
-    if (distance > touching_distance(scale)) {
-        out.gap = distance;
-        out.normal = offset / distance;
+    Vec3<T> offset;
+    if (core_apart(c, u, e, scale, out, offset)) {
         // Outside along one axis only: the closest point is on a face, the normal exactly its axis.
         const int outside = (offset.x != T(0) ? 1 : 0) + (offset.y != T(0) ? 1 : 0) + (offset.z != T(0) ? 1 : 0);
         if (outside == 1) {
@@ -226,14 +236,8 @@ template <class T>
 CoreContact<T> core_core_contact(T half_a, const Vec3<T>& c, const Vec3<T>& u, T scale) {
     const Vec3<T> e{T(0), half_a, T(0)};
     CoreContact<T> out;
-    out.t = closest_to_box(c, u, e);
-    const Vec3<T> offset = outside_box(c + u * out.t, e);
-    const T distance = length(offset);
-    if (distance > touching_distance(scale)) {
-        out.gap = distance;
-        out.normal = offset / distance;
-        return out;
-    }
+    Vec3<T> offset;
+    if (core_apart(c, u, e, scale, out, offset)) return out;
     // The cores touch or cross (coincident centres, crossing axes, overlapping parallel axes):
     // depth is the radius sum along any normal perpendicular to both. Take their common normal when
     // they cross, else the way from A's axis to B's centre, else x; pointing towards B's centre.

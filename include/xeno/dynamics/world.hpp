@@ -288,6 +288,8 @@ private:
     void prepare(T dt);
     void solve(T dt);
     void thin_crowded_pairs();
+    void build_islands();
+    std::uint32_t island_root(std::uint32_t slot);
     void finish();
     void discard_overflowed_solve();
     void update_sleep(T dt);
@@ -971,6 +973,28 @@ bool World<T>::closes_within_step(const Contact<T>& c, T dt) const {
     return false;
 }
 
+/// Islands: dynamic bodies joined by touching (non-sensor) contacts and by joints, as a
+/// union–find over body slots in island_parent_ (linear in bodies, contacts and joints).
+template <class T>
+void World<T>::build_islands() {
+    std::vector<std::uint32_t>& parent = island_parent_;
+    parent.resize(bodies_.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto dynamic = [&](std::uint32_t slot) { return bodies_[slot].type_ == BodyType::dynamic; };
+    for (const Contact<T>& c : contacts_)
+        if (c.touching && !c.sensor && dynamic(c.a.index) && dynamic(c.b.index)) parent[island_root(c.a.index)] = island_root(c.b.index);
+    for (const Joint<T>& j : joints_)
+        if (j.alive && dynamic(j.a.index) && dynamic(j.b.index)) parent[island_root(j.a.index)] = island_root(j.b.index);
+}
+
+/// The root of a slot's island (union–find with path halving; after build_islands).
+template <class T>
+std::uint32_t World<T>::island_root(std::uint32_t slot) {
+    std::vector<std::uint32_t>& parent = island_parent_;
+    while (parent[slot] != slot) slot = parent[slot] = parent[parent[slot]];
+    return slot;
+}
+
 template <class T>
 void World<T>::wake_touched_islands(T dt) {
     // Islands of dynamic bodies joined by touching contacts and joints (union–find, linear in
@@ -978,19 +1002,9 @@ void World<T>::wake_touched_islands(T dt) {
     // active body touches one of its bodies, has a contact with it that can close within this
     // step (speculative points count) or is jointed to it: an awake body is never solved against
     // a sleeping one, which would act as an immovable wall and eat the impact.
-    std::vector<std::uint32_t>& parent = island_parent_;
-    parent.resize(bodies_.size());
-    std::iota(parent.begin(), parent.end(), 0u);
-    auto find = [&](std::uint32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    };
-    auto dynamic = [&](std::uint32_t slot) { return bodies_[slot].type_ == BodyType::dynamic; };
-    auto sleeping = [&](std::uint32_t slot) { return dynamic(slot) && !bodies_[slot].awake_; };
-    for (const Contact<T>& c : contacts_)
-        if (c.touching && !c.sensor && dynamic(c.a.index) && dynamic(c.b.index)) parent[find(c.a.index)] = find(c.b.index);
-    for (const Joint<T>& j : joints_)
-        if (j.alive && dynamic(j.a.index) && dynamic(j.b.index)) parent[find(j.a.index)] = find(j.b.index);
+    build_islands();
+    auto find = [&](std::uint32_t slot) { return island_root(slot); };
+    auto sleeping = [&](std::uint32_t slot) { return bodies_[slot].type_ == BodyType::dynamic && !bodies_[slot].awake_; };
 
     std::vector<std::uint8_t>& wake = island_flag_;
     wake.assign(bodies_.size(), 0);
@@ -1247,24 +1261,8 @@ void World<T>::discard_overflowed_solve() {
 template <class T>
 void World<T>::update_sleep(T dt) {
     if (!settings_.allow_sleeping) return;
-    // Islands: dynamic bodies joined by touching contacts (union–find with path halving).
-    std::vector<std::uint32_t>& parent = island_parent_;
-    parent.resize(bodies_.size());
-    std::iota(parent.begin(), parent.end(), 0u);
-    auto find = [&](std::uint32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    };
-    for (const Contact<T>& c : contacts_) {
-        if (!c.touching || c.sensor) continue;
-        const Body<T>& a = bodies_[c.a.index];
-        const Body<T>& b = bodies_[c.b.index];
-        if (a.type_ != BodyType::dynamic || b.type_ != BodyType::dynamic) continue;
-        parent[find(c.a.index)] = find(c.b.index);
-    }
-    for (const Joint<T>& j : joints_)
-        if (j.alive && bodies_[j.a.index].type_ == BodyType::dynamic && bodies_[j.b.index].type_ == BodyType::dynamic)
-            parent[find(j.a.index)] = find(j.b.index);
+    build_islands();
+    auto find = [&](std::uint32_t slot) { return island_root(slot); };
     // A body's sleep clock runs while it is slow; an island sleeps when all its clocks passed
     // sleep_time and none refuses to sleep or touches a moving kinematic body.
     const T lin_sq = settings_.sleep_linear_speed * settings_.sleep_linear_speed;
