@@ -7,8 +7,9 @@
 #      in steps 1 and 3), the libFuzzer targets
 #   3. g++ with -fsanitize=address,undefined -fno-sanitize-recover=all (-O1, line tables): the
 #      unit and slow tests again
-#   4. the README's example compiled by three consumer projects: plain -I include,
-#      add_subdirectory(xeno) and find_package(xeno CONFIG REQUIRED) after cmake --install
+#   4. the README's example compiled by the consumer projects: plain -I include,
+#      add_subdirectory(xeno) and find_package(xeno CONFIG REQUIRED) after cmake --install, each
+#      header-only and in compiled mode (xeno::compiled), and in xeno::f32 with -Werror
 #   5. the libFuzzer targets for a bounded time (clang) and the g++/clang++ determinism hash
 # XENO_TEST_QUICK=1 runs only step 1 without the slow label (for iterating).
 set -euo pipefail

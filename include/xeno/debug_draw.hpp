@@ -201,4 +201,7 @@ void draw_shape(DebugDraw<T>& out, const Shape<T>& s, const Transform<T>& t, Col
     }
 }
 
+namespace f32 { using DebugDraw = xeno::DebugDraw<float>; }
+namespace f64 { using DebugDraw = xeno::DebugDraw<double>; }
+
 }  // namespace xeno

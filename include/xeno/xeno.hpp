@@ -2,7 +2,8 @@
 // SPDX-License-Identifier: MIT
 //
 // Umbrella header: every public xeno header, nothing else. `#include <xeno/xeno.hpp>` and use
-// xeno::f64 (or xeno::f32) names, or the templates directly.
+// xeno::f64 (or xeno::f32) names, or the templates directly. (collide/sat.hpp, the separating-axis
+// reference that tests and benchmarks measure MPR against, is included by name.)
 #pragma once
 
 #include "config.hpp"
@@ -26,6 +27,7 @@
 #include "shape/sphere.hpp"
 #include "shape/support_face.hpp"
 #include "broadphase/brute_force.hpp"
+#include "broadphase/kind.hpp"
 #include "broadphase/pair.hpp"
 #include "broadphase/sweep_and_prune.hpp"
 #include "collide/box_box.hpp"
@@ -34,7 +36,6 @@
 #include "collide/minkowski.hpp"
 #include "collide/mpr.hpp"
 #include "collide/raycast.hpp"
-#include "collide/sat.hpp"
 #include "contact/manifold.hpp"
 #include "debug_draw.hpp"
 #include "dynamics/body.hpp"
@@ -48,3 +49,4 @@
 #include "dynamics/world.hpp"
 #include "dynamics/world_draw.hpp"
 #include "shape/convex_hull.hpp"
+#include "compiled.hpp"  // last: extern templates when XENO_COMPILED_LIB is defined

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Compiles and runs the README's example (its first ```cpp block) three ways, as a user would
 # consume xeno: plain -I include, add_subdirectory(xeno), find_package(xeno CONFIG REQUIRED)
-# after cmake --install. Usage: tests/consumers/run.sh WORK_DIR
+# after cmake --install; each header-only (xeno::xeno) and in compiled mode (xeno::compiled, or
+# src/xeno_compiled.cpp and -DXENO_COMPILED_LIB by hand). All six must print the same.
+# Usage: tests/consumers/run.sh WORK_DIR
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
@@ -18,20 +20,45 @@ echo "-- plain: c++ -std=c++17 -I include"
 ${CXX:-c++} -std=c++17 -O2 -Wall -Wextra -Werror -I "$root/include" "$example" -o "$work/plain"
 "$work/plain" > "$work/plain.out"
 
-echo "-- add_subdirectory(xeno)"
-cmake -S "$here/subdirectory" -B "$work/subdirectory" -DXENO_SOURCE_DIR="$root" -DEXAMPLE_SOURCE="$example" >/dev/null
-cmake --build "$work/subdirectory" >/dev/null
-"$work/subdirectory/app" > "$work/subdirectory.out"
+echo "-- plain, the example in xeno::f32, -Werror with the project's warning set (g++ and clang++)"
+sed 's/namespace xs = xeno::f64;/namespace xs = xeno::f32;/' "$example" > "$work/readme_example_f32.cpp"
+grep -q 'xeno::f32;' "$work/readme_example_f32.cpp" || { echo "the example does not start with xeno::f64" >&2; exit 1; }
+for cxx in g++ clang++; do
+  command -v "$cxx" >/dev/null || continue
+  "$cxx" -std=c++17 -O1 -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Werror -I "$root/include" \
+    "$work/readme_example_f32.cpp" -o "$work/plain_f32_$cxx"
+  "$work/plain_f32_$cxx" > /dev/null
+done
 
-echo "-- find_package(xeno CONFIG REQUIRED) after cmake --install"
+echo "-- plain, compiled mode: src/xeno_compiled.cpp and -DXENO_COMPILED_LIB"
+${CXX:-c++} -std=c++17 -O2 -Wall -Wextra -Werror -DXENO_COMPILED_LIB -I "$root/include" \
+  "$root/src/xeno_compiled.cpp" "$example" -o "$work/plain_compiled"
+"$work/plain_compiled" > "$work/plain_compiled.out"
+
+# project (subdirectory or package), then cmake -D arguments: builds and runs it linking each of
+# xeno::xeno and xeno::compiled; the output goes to $work/<project>-<xeno|compiled>.out.
+consume() {
+  local project=$1; shift
+  for target in xeno::xeno xeno::compiled; do
+    local mode=${target#xeno::}
+    echo "-- $project, linking $target"
+    cmake -S "$here/$project" -B "$work/$project-$mode" -DEXAMPLE_SOURCE="$example" -DXENO_TARGET="$target" "$@" >/dev/null
+    cmake --build "$work/$project-$mode" >/dev/null
+    "$work/$project-$mode/app" > "$work/$project-$mode.out"
+  done
+}
+
+consume subdirectory -DXENO_SOURCE_DIR="$root"   # add_subdirectory(xeno)
+
+echo "-- cmake --install, for find_package(xeno CONFIG REQUIRED)"
 cmake -S "$root" -B "$work/xeno-build" -DXENO_BUILD_TESTS=OFF -DXENO_BUILD_BENCH=OFF \
       -DXENO_BUILD_EXAMPLES=OFF -DXENO_BUILD_HEADER_CHECK=OFF -DCMAKE_INSTALL_PREFIX="$work/prefix" >/dev/null
+cmake --build "$work/xeno-build" >/dev/null  # the static library of compiled mode
 cmake --install "$work/xeno-build" >/dev/null
-cmake -S "$here/package" -B "$work/package" -DCMAKE_PREFIX_PATH="$work/prefix" -DEXAMPLE_SOURCE="$example" >/dev/null
-cmake --build "$work/package" >/dev/null
-"$work/package/app" > "$work/package.out"
+consume package -DCMAKE_PREFIX_PATH="$work/prefix"
 
-cmp "$work/plain.out" "$work/subdirectory.out"
-cmp "$work/plain.out" "$work/package.out"
-echo "-- all three consumers built and printed the same:"
+for out in plain_compiled subdirectory-xeno subdirectory-compiled package-xeno package-compiled; do
+  cmp "$work/plain.out" "$work/$out.out"
+done
+echo "-- all six consumers built and printed the same:"
 cat "$work/plain.out"

@@ -1,16 +1,22 @@
 # SPDX-FileCopyrightText: 2026 The xeno authors
 # SPDX-License-Identifier: MIT
 #
-# Runs PROGRAM twice, as two processes, and fails unless both exit 0 with identical, non-empty
-# output: the cross-process half of the determinism test (docs/robustness.md, "Determinism").
-# Usage: cmake -DPROGRAM=<xeno_determinism> [-DWORK_DIR=<dir>] -P compare_runs.cmake
+# Runs PROGRAM twice, as two processes (or PROGRAM then OTHER), and fails unless both exit 0 with
+# identical, non-empty output: the cross-process half of the determinism test, and header-only
+# against compiled mode (docs/robustness.md, "Determinism").
+# Usage: cmake -DPROGRAM=<xeno_determinism> [-DOTHER=<program>] [-DWORK_DIR=<dir>] -P compare_runs.cmake
 if(NOT PROGRAM)
   message(FATAL_ERROR "compare_runs.cmake: set -DPROGRAM=<executable>")
 endif()
+set(program_1 ${PROGRAM})
+set(program_2 ${PROGRAM})
+if(OTHER)
+  set(program_2 ${OTHER})
+endif()
 foreach(run 1 2)
-  execute_process(COMMAND ${PROGRAM} RESULT_VARIABLE code OUTPUT_VARIABLE out_${run} ERROR_VARIABLE err)
+  execute_process(COMMAND ${program_${run}} RESULT_VARIABLE code OUTPUT_VARIABLE out_${run} ERROR_VARIABLE err)
   if(NOT code EQUAL 0)
-    message(FATAL_ERROR "run ${run} of ${PROGRAM} failed (${code}): ${err}")
+    message(FATAL_ERROR "run ${run} (${program_${run}}) failed (${code}): ${err}")
   endif()
 endforeach()
 if(out_1 STREQUAL "")
@@ -21,6 +27,6 @@ if(NOT out_1 STREQUAL out_2)
     file(WRITE ${WORK_DIR}/determinism_run1.txt "${out_1}")
     file(WRITE ${WORK_DIR}/determinism_run2.txt "${out_2}")
   endif()
-  message(FATAL_ERROR "two processes gave different state hashes:\n--- run 1\n${out_1}--- run 2\n${out_2}")
+  message(FATAL_ERROR "the two runs gave different state hashes:\n--- run 1\n${out_1}--- run 2\n${out_2}")
 endif()
-message(STATUS "two processes agree:\n${out_1}")
+message(STATUS "the two runs agree:\n${out_1}")

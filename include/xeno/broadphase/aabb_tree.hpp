@@ -41,7 +41,6 @@
 #include "../error.hpp"
 #include "../math/aabb.hpp"
 #include "pair.hpp"
-#include "sweep_and_prune.hpp"  // detail::sort_pairs_by_first
 
 #include <algorithm>
 #include <cstdint>

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -20,15 +21,40 @@ struct ProxyPair {
     friend bool operator<(const ProxyPair& x, const ProxyPair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; }
 };
 
-/// The broad-phase strategies the world can use; see broadphase/*.hpp.
-enum class BroadPhaseKind {
-    brute_force,      ///< every pair's boxes compared: O(n²), the reference
-    sweep_and_prune,  ///< sorted sweep on one axis, incremental re-sort (default)
-    aabb_tree,        ///< dynamic tree of fattened boxes, incremental refit
-};
-
 namespace detail {
 inline void sort_pairs(std::vector<ProxyPair>& pairs) { std::sort(pairs.begin(), pairs.end()); }
+
+/// Sorts pairs (a < b < proxies) as detail::sort_pairs does, in O(proxies + pairs) when there are
+/// many: a counting sort on a, then each run of equal a sorted on b (runs are short: a body has a
+/// handful of partners; a long run, say a huge box's, gets std::sort).
+inline void sort_pairs_by_first(std::vector<ProxyPair>& pairs, std::size_t proxies, std::vector<std::uint32_t>& counts,
+                                std::vector<ProxyPair>& scratch) {
+    if (pairs.size() < 64 || pairs.size() < proxies / 8) {
+        sort_pairs(pairs);
+        return;
+    }
+    counts.assign(proxies + 1, 0);
+    for (const ProxyPair& p : pairs) ++counts[p.a + 1];
+    for (std::size_t k = 0; k < proxies; ++k) counts[k + 1] += counts[k];
+    scratch.resize(pairs.size());
+    for (const ProxyPair& p : pairs) scratch[counts[p.a]++] = p;  // afterwards counts[a] = end of run a
+    std::size_t begin = 0;
+    for (std::size_t a = 0; a < proxies && begin < scratch.size(); ++a) {
+        const std::size_t end = counts[a];
+        if (end - begin > 16) {
+            std::sort(scratch.begin() + static_cast<std::ptrdiff_t>(begin), scratch.begin() + static_cast<std::ptrdiff_t>(end));
+        } else {
+            for (std::size_t i = begin + 1; i < end; ++i) {
+                const ProxyPair p = scratch[i];
+                std::size_t j = i;
+                for (; j > begin && p.b < scratch[j - 1].b; --j) scratch[j] = scratch[j - 1];
+                scratch[j] = p;
+            }
+        }
+        begin = end;
+    }
+    pairs.swap(scratch);
+}
 
 /// A well-spread 64-bit hash of a pair of slots (the SplitMix64 finaliser, Steele, Lea and
 /// Flood, "Fast splittable pseudorandom number generators", OOPSLA 2014): the world's

@@ -34,42 +34,6 @@
 
 namespace xeno {
 
-namespace detail {
-
-/// Sorts pairs (a < b < proxies) as detail::sort_pairs does, in O(proxies + pairs) when there are
-/// many: a counting sort on a, then each run of equal a sorted on b (runs are short: a body has a
-/// handful of partners; a long run, say a huge box's, gets std::sort).
-inline void sort_pairs_by_first(std::vector<ProxyPair>& pairs, std::size_t proxies, std::vector<std::uint32_t>& counts,
-                                std::vector<ProxyPair>& scratch) {
-    if (pairs.size() < 64 || pairs.size() < proxies / 8) {
-        sort_pairs(pairs);
-        return;
-    }
-    counts.assign(proxies + 1, 0);
-    for (const ProxyPair& p : pairs) ++counts[p.a + 1];
-    for (std::size_t k = 0; k < proxies; ++k) counts[k + 1] += counts[k];
-    scratch.resize(pairs.size());
-    for (const ProxyPair& p : pairs) scratch[counts[p.a]++] = p;  // afterwards counts[a] = end of run a
-    std::size_t begin = 0;
-    for (std::size_t a = 0; a < proxies && begin < scratch.size(); ++a) {
-        const std::size_t end = counts[a];
-        if (end - begin > 16) {
-            std::sort(scratch.begin() + static_cast<std::ptrdiff_t>(begin), scratch.begin() + static_cast<std::ptrdiff_t>(end));
-        } else {
-            for (std::size_t i = begin + 1; i < end; ++i) {
-                const ProxyPair p = scratch[i];
-                std::size_t j = i;
-                for (; j > begin && p.b < scratch[j - 1].b; --j) scratch[j] = scratch[j - 1];
-                scratch[j] = p;
-            }
-        }
-        begin = end;
-    }
-    pairs.swap(scratch);
-}
-
-}  // namespace detail
-
 /// Incremental sweep-and-prune over a vector of boxes indexed by proxy id.
 template <class T>
 class SweepAndPrune {
@@ -254,5 +218,8 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
     }
     detail::sort_pairs_by_first(pairs, n, counts_, scratch_);
 }
+
+namespace f32 { using SweepAndPrune = xeno::SweepAndPrune<float>; }
+namespace f64 { using SweepAndPrune = xeno::SweepAndPrune<double>; }
 
 }  // namespace xeno

@@ -232,7 +232,7 @@ ContactManifold<typename A::scalar_type> build_manifold(const MinkowskiDifferenc
     return out;
 }
 
-namespace f32 { using ContactManifold = xeno::ContactManifold<float>; }
-namespace f64 { using ContactManifold = xeno::ContactManifold<double>; }
+namespace f32 { using ContactManifold = xeno::ContactManifold<float>; using ManifoldPoint = xeno::ManifoldPoint<float>; }
+namespace f64 { using ContactManifold = xeno::ContactManifold<double>; using ManifoldPoint = xeno::ManifoldPoint<double>; }
 
 }  // namespace xeno

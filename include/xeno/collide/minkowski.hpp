@@ -133,4 +133,7 @@ private:
     mutable std::uint32_t hint_a_ = kNoHint, hint_b_ = kNoHint;  ///< last support vertices of polyhedra
 };
 
+namespace f32 { using SupportPoint = xeno::SupportPoint<float>; }
+namespace f64 { using SupportPoint = xeno::SupportPoint<double>; }
+
 }  // namespace xeno

@@ -29,6 +29,7 @@
 #include <vector>
 
 namespace xeno {
+namespace detail {
 
 /// One contact point's row, world frame, rebuilt every step.
 template <class T>
@@ -70,7 +71,6 @@ struct SolvePass {
     T max_push_out_speed{};
 };
 
-namespace detail {
 
 template <class T>
 void apply_contact_impulses(const ContactConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b) {
@@ -88,7 +88,6 @@ void apply_contact_impulses(const ContactConstraint<T>& c, SolverBody<T>& a, Sol
     b.w += b.inv_inertia * twist;
 }
 
-}  // namespace detail
 
 /// Applies last step's impulses (warm start) to the bodies.
 template <class T>
@@ -203,7 +202,6 @@ void apply_restitution(std::vector<ContactConstraint<T>>& constraints, std::vect
     bodies[0] = SolverBody<T>{};
 }
 
-namespace f32 { using ContactConstraint = xeno::ContactConstraint<float>; }
-namespace f64 { using ContactConstraint = xeno::ContactConstraint<double>; }
 
+}  // namespace detail
 }  // namespace xeno

@@ -13,6 +13,7 @@
 #include "solver_body.hpp"
 
 namespace xeno {
+namespace detail {
 
 /// The per-step constants of one dynamic body that velocity integration needs.
 template <class T>
@@ -26,10 +27,8 @@ struct BodyIntegration {
     T max_spin = ScalarTraits<T>::infinity;  ///< rad/s: the spin cap of integrate_position, applied first
 };
 
-namespace detail {
 template <class T>
 Vec3<T> capped_length(const Vec3<T>& v, T limit);
-}  // namespace detail
 
 /// v += h a, ω += h I⁻¹τ, then the implicit gyroscopic correction and damping.
 template <class T>
@@ -65,7 +64,6 @@ void integrate_velocity(SolverBody<T>& body, const BodyIntegration<T>& in, T h) 
     body.w *= T(1) / (T(1) + h * in.angular_damping);
 }
 
-namespace detail {
 
 /// v scaled down to length `limit` when it is longer (limit > 0). The length is taken after
 /// dividing by the largest component, so a finite v of any size (1e20 in float, whose square
@@ -85,7 +83,6 @@ Vec3<T> capped_length(const Vec3<T>& v, T limit) {
     return u * (limit / length(u));
 }
 
-}  // namespace detail
 
 /// Δx += h v, Δq ← Δq + h/2 (0, ω) Δq, with the speed caps against tunnelling.
 template <class T>
@@ -98,4 +95,5 @@ void integrate_position(SolverBody<T>& body, T h, T max_speed, T max_rotation) {
     body.dq = integrate(body.dq, body.w, h);
 }
 
+}  // namespace detail
 }  // namespace xeno

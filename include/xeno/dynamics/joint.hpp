@@ -106,6 +106,8 @@ struct Joint {
     }
 };
 
+namespace detail {
+
 /// A joint's rows for one step (world frame), built in prepare and solved every substep.
 template <class T>
 struct JointConstraint {
@@ -123,7 +125,6 @@ struct JointConstraint {
     T max_bias_speed = ScalarTraits<T>::infinity;
 };
 
-namespace detail {
 
 /// −[r]× M [r]×, the rotational part of a point row's 3×3 effective mass.
 template <class T>
@@ -139,7 +140,6 @@ void perpendicular_pair(const Vec3<T>& a, Vec3<T>& b1, Vec3<T>& b2) {
     b2 = cross(a, b1);
 }
 
-}  // namespace detail
 
 /// Applies the joint's accumulated impulses (warm start).
 template <class T>
@@ -272,6 +272,8 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
         b.w += b.inv_inertia * impulse;
     }
 }
+
+}  // namespace detail
 
 namespace f32 { using JointDef = xeno::JointDef<float>; using Joint = xeno::Joint<float>; }
 namespace f64 { using JointDef = xeno::JointDef<double>; using Joint = xeno::Joint<double>; }

@@ -9,7 +9,7 @@
 // times the cost).
 #pragma once
 
-#include "../broadphase/pair.hpp"
+#include "../broadphase/kind.hpp"
 #include "../error.hpp"
 #include "../math/vec3.hpp"
 

@@ -13,6 +13,7 @@
 #include "../math/quat.hpp"
 
 namespace xeno {
+namespace detail {
 
 /// Hot per-body solver state, world frame.
 template <class T>
@@ -53,4 +54,5 @@ struct Softness {
     }
 };
 
+}  // namespace detail
 }  // namespace xeno

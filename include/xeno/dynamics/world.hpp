@@ -308,13 +308,13 @@ private:
     AabbTree<T> tree_;
     std::vector<ProxyPair> pairs_;
     std::vector<Contact<T>> contacts_;            ///< sorted by (a.index, b.index)
-    std::vector<SolverBody<T>> solver_bodies_;    ///< slot 0: static stand-in
+    std::vector<detail::SolverBody<T>> solver_bodies_;    ///< slot 0: static stand-in
     std::vector<std::uint32_t> solver_index_;     ///< per slot: index into solver_bodies_ (0: none)
     std::vector<std::uint32_t> solver_slot_;      ///< per solver body: its slot
-    std::vector<ContactConstraint<T>> constraints_;
+    std::vector<detail::ContactConstraint<T>> constraints_;
     std::vector<Joint<T>> joints_;
     std::vector<std::uint32_t> free_joints_;
-    std::vector<JointConstraint<T>> joint_rows_;
+    std::vector<detail::JointConstraint<T>> joint_rows_;
     std::vector<std::uint64_t> unconnected_pairs_;  ///< sorted keys of jointed pairs that do not collide
     StepStats stats_;
     std::vector<ContactEvent<T>> events_, events_pending_;
@@ -547,12 +547,12 @@ void World<T>::rebuild_joint_pairs() {
 template <class T>
 void World<T>::prepare_joints(T h) {
     joint_rows_.clear();
-    const Softness<T> soft = Softness<T>::make(std::min(settings_.joint_hertz, T(0.25) / h), settings_.joint_damping_ratio, h);
-    const Softness<T> limit_soft = Softness<T>::make(std::min(settings_.contact_hertz, T(0.125) / h), settings_.contact_damping_ratio, h);
+    const detail::Softness<T> soft = detail::Softness<T>::make(std::min(settings_.joint_hertz, T(0.25) / h), settings_.joint_damping_ratio, h);
+    const detail::Softness<T> limit_soft = detail::Softness<T>::make(std::min(settings_.contact_hertz, T(0.125) / h), settings_.contact_damping_ratio, h);
     for (std::uint32_t i = 0; i < joints_.size(); ++i) {
         Joint<T>& j = joints_[i];
         if (!j.alive) continue;
-        JointConstraint<T> c;
+        detail::JointConstraint<T> c;
         c.joint = i;
         c.a = solver_index_[j.a.index];
         c.b = solver_index_[j.b.index];
@@ -566,7 +566,7 @@ void World<T>::prepare_joints(T h) {
         c.axis_b0 = rotate(b.orientation_, j.local_axis_b);
         c.qa0 = a.orientation_;
         c.qb0 = b.orientation_;
-        c.softness = settings_.solver == SolverMode::soft_step ? soft : Softness<T>::make(T(0.25) / h, T(1), h);
+        c.softness = settings_.solver == SolverMode::soft_step ? soft : detail::Softness<T>::make(T(0.25) / h, T(1), h);
         c.limit_softness = settings_.solver == SolverMode::soft_step ? limit_soft : c.softness;
         c.max_bias_speed = settings_.max_linear_speed;
         if (!settings_.warm_starting) {
@@ -1035,14 +1035,14 @@ template <class T>
 void World<T>::prepare(T dt) {
     const T h = dt / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
     // Solver bodies: every awake dynamic or kinematic body; slot 0 stands for static ones.
-    solver_bodies_.assign(1, SolverBody<T>{});
+    solver_bodies_.assign(1, detail::SolverBody<T>{});
     solver_slot_.assign(1, 0);
     std::fill(solver_index_.begin(), solver_index_.end(), 0u);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         const Body<T>& b = bodies_[i];
         if (!b.alive_ || b.type_ == BodyType::static_body || !b.awake_) continue;
         solver_index_[i] = static_cast<std::uint32_t>(solver_bodies_.size());
-        SolverBody<T> s;
+        detail::SolverBody<T> s;
         // Velocities enter the solver within the integrator's caps: any finite velocity is
         // accepted at the door, and a kinematic body at 1e308 m/s made every row it touched NaN
         // (found by the world fuzzer).
@@ -1061,23 +1061,23 @@ void World<T>::prepare(T dt) {
     constraints_.clear();
     constraints_.reserve(contacts_.size());
     const T contact_hertz = std::min(settings_.contact_hertz, T(0.125) / h);
-    const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
-    const Softness<T> soft_static =
-        Softness<T>::make(std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h), settings_.contact_damping_ratio, h);
+    const detail::Softness<T> soft = detail::Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
+    const detail::Softness<T> soft_static =
+        detail::Softness<T>::make(std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h), settings_.contact_damping_ratio, h);
     for (std::uint32_t m = 0; m < contacts_.size(); ++m) {
         const Contact<T>& contact = contacts_[m];
         if (contact.sensor || contact.manifold.count == 0) continue;
         const Body<T>& a = bodies_[contact.a.index];
         const Body<T>& b = bodies_[contact.b.index];
-        ContactConstraint<T> c;
+        detail::ContactConstraint<T> c;
         c.a = solver_index_[contact.a.index];
         c.b = solver_index_[contact.b.index];
         if (c.a == 0 && c.b == 0) continue;  // both asleep or static
         // A sleeper left asleep by wake_touched_islands cannot be reached this step; solving
         // against it as a static stand-in would stop the mover dead (issue 12), so skip the row.
         if ((c.a == 0 && a.type_ == BodyType::dynamic) || (c.b == 0 && b.type_ == BodyType::dynamic)) continue;
-        const SolverBody<T>& sa = solver_bodies_[c.a];
-        const SolverBody<T>& sb = solver_bodies_[c.b];
+        const detail::SolverBody<T>& sa = solver_bodies_[c.a];
+        const detail::SolverBody<T>& sb = solver_bodies_[c.b];
         c.manifold = m;
         c.normal = contact.manifold.normal;
         c.t1 = any_perpendicular(c.normal);
@@ -1085,13 +1085,13 @@ void World<T>::prepare(T dt) {
         c.friction = contact.friction;
         c.restitution = contact.restitution;
         c.softness = (a.type_ == BodyType::dynamic && b.type_ == BodyType::dynamic) ? soft : soft_static;
-        if (settings_.solver == SolverMode::baumgarte) c.softness = Softness<T>{};
+        if (settings_.solver == SolverMode::baumgarte) c.softness = detail::Softness<T>{};
         c.count = contact.manifold.count;
         const Vec3<T> xa = a.position_, xb = b.position_;
         Vec3<T> centre{};
         for (int i = 0; i < c.count; ++i) {
             const ContactPoint<T>& cp = contact.manifold.points[static_cast<std::size_t>(i)];
-            ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
+            detail::ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
             const Vec3<T> pa = a.world_point(cp.local_a), pb = b.world_point(cp.local_b);
             const Vec3<T> mid = (pa + pb) * T(0.5);
             centre += mid;
@@ -1144,13 +1144,13 @@ void World<T>::solve(T dt) {
     const bool soft = settings_.solver == SolverMode::soft_step;
     const int substeps = soft ? settings_.substeps : 1;
     const T h = dt / static_cast<T>(substeps);
-    SolvePass<T> pass{T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
+    detail::SolvePass<T> pass{T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
     const T max_rotation = settings_.max_rotation_per_step / static_cast<T>(substeps);
     for (int sub = 0; sub < substeps; ++sub) {
         for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
             const Body<T>& b = bodies_[solver_slot_[i]];
             if (b.type_ != BodyType::dynamic) continue;  // kinematic: velocity is the user's
-            BodyIntegration<T> in;
+            detail::BodyIntegration<T> in;
             in.acceleration = settings_.gravity * b.gravity_scale_ + b.force_ * b.inverse_mass_;
             in.angular_impulse_rate = solver_bodies_[i].inv_inertia * b.torque_;
             in.inertia_local = &b.inertia_local_;
@@ -1159,42 +1159,42 @@ void World<T>::solve(T dt) {
             in.linear_damping = b.linear_damping_;
             in.angular_damping = b.angular_damping_;
             in.max_spin = max_rotation / h;
-            integrate_velocity(solver_bodies_[i], in, h);
+            detail::integrate_velocity(solver_bodies_[i], in, h);
         }
         if (settings_.warm_starting) {
-            for (const JointConstraint<T>& c : joint_rows_)
-                warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
-            warm_start(constraints_, solver_bodies_);
+            for (const detail::JointConstraint<T>& c : joint_rows_)
+                detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
+            detail::warm_start(constraints_, solver_bodies_);
         }
         pass.use_bias = true;
         for (int it = 0; it < settings_.velocity_iterations; ++it) {
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
-                for (const JointConstraint<T>& c : joint_rows_)
-                    solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
-            solve_contacts(constraints_, solver_bodies_, pass);
+                for (const detail::JointConstraint<T>& c : joint_rows_)
+                    detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
+            detail::solve_contacts(constraints_, solver_bodies_, pass);
         }
         for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
             const Body<T>& b = bodies_[solver_slot_[i]];
             const T max_speed = speed_limit(b);
-            integrate_position(solver_bodies_[i], h, max_speed, max_rotation);
+            detail::integrate_position(solver_bodies_[i], h, max_speed, max_rotation);
         }
         pass.use_bias = false;
         for (int it = 0; it < settings_.relax_iterations; ++it) {
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
-                for (const JointConstraint<T>& c : joint_rows_)
-                    solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], false, h);
-            solve_contacts(constraints_, solver_bodies_, pass);
+                for (const detail::JointConstraint<T>& c : joint_rows_)
+                    detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], false, h);
+            detail::solve_contacts(constraints_, solver_bodies_, pass);
         }
-        solver_bodies_[0] = SolverBody<T>{};
-        accumulate_step_impulses(constraints_);
+        solver_bodies_[0] = detail::SolverBody<T>{};
+        detail::accumulate_step_impulses(constraints_);
     }
-    apply_restitution(constraints_, solver_bodies_, settings_.restitution_threshold);
+    detail::apply_restitution(constraints_, solver_bodies_, settings_.restitution_threshold);
 }
 
 template <class T>
 void World<T>::finish() {
     discard_overflowed_solve();
-    for (const ContactConstraint<T>& c : constraints_) {
+    for (const detail::ContactConstraint<T>& c : constraints_) {
         Manifold<T>& m = contacts_[c.manifold].manifold;
         for (int i = 0; i < c.count; ++i) {
             m.points[static_cast<std::size_t>(i)].normal_impulse = c.points[static_cast<std::size_t>(i)].normal_impulse;
@@ -1210,7 +1210,7 @@ void World<T>::finish() {
     }
     for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
         Body<T>& b = bodies_[solver_slot_[i]];
-        const SolverBody<T>& s = solver_bodies_[i];
+        const detail::SolverBody<T>& s = solver_bodies_[i];
         b.position_ += s.dp;
         b.orientation_ = normalized(s.dq * b.orientation_);
         b.linear_velocity_ = s.v;
@@ -1231,7 +1231,7 @@ template <class T>
 void World<T>::discard_overflowed_solve() {
     bool overflowed = false;
     for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
-        SolverBody<T>& s = solver_bodies_[i];
+        detail::SolverBody<T>& s = solver_bodies_[i];
         if (is_finite(s.v) && is_finite(s.w) && is_finite(s.dp) && is_finite(s.dq)) continue;
         const Body<T>& b = bodies_[solver_slot_[i]];
         s.v = b.linear_velocity_;  // finite: checked where it entered
@@ -1241,12 +1241,12 @@ void World<T>::discard_overflowed_solve() {
         overflowed = true;
     }
     if (!overflowed) return;
-    for (ContactConstraint<T>& c : constraints_) {
+    for (detail::ContactConstraint<T>& c : constraints_) {
         bool finite = std::isfinite(c.friction_1) && std::isfinite(c.friction_2) && std::isfinite(c.twist_impulse);
         for (int i = 0; i < c.count; ++i) finite = finite && std::isfinite(c.points[static_cast<std::size_t>(i)].step_impulse);
         if (finite) continue;
         for (int i = 0; i < c.count; ++i) {
-            ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
+            detail::ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
             p.normal_impulse = p.max_normal_impulse = p.step_impulse = T(0);
         }
         c.friction_1 = c.friction_2 = c.twist_impulse = T(0);
@@ -1296,7 +1296,7 @@ void World<T>::update_sleep(T dt) {
     }
 }
 
-namespace f32 { using World = xeno::World<float>; using Contact = xeno::Contact<float>; }
-namespace f64 { using World = xeno::World<double>; using Contact = xeno::Contact<double>; }
+namespace f32 { using World = xeno::World<float>; using Contact = xeno::Contact<float>; using ContactEvent = xeno::ContactEvent<float>; using WorldRayHit = xeno::WorldRayHit<float>; }
+namespace f64 { using World = xeno::World<double>; using Contact = xeno::Contact<double>; using ContactEvent = xeno::ContactEvent<double>; using WorldRayHit = xeno::WorldRayHit<double>; }
 
 }  // namespace xeno

@@ -67,4 +67,7 @@ void draw_world(const World<T>& world, DebugDraw<T>& out, const DrawOptions<T>& 
     }
 }
 
+namespace f32 { using DrawOptions = xeno::DrawOptions<float>; }
+namespace f64 { using DrawOptions = xeno::DrawOptions<double>; }
+
 }  // namespace xeno

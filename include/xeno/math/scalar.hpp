@@ -69,4 +69,8 @@ constexpr T degrees(T radians_value) {
     return radians_value * (T(180) / ScalarTraits<T>::pi);
 }
 
+/// The scalar of each precision's names (`xs::Real(0.2) * i` reads the same in f32 and f64).
+namespace f32 { using Real = float; }
+namespace f64 { using Real = double; }
+
 }  // namespace xeno

@@ -1,0 +1,38 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Compiled mode (README, "Compiled mode"). Header-only is the default: every translation unit
+// that steps a World compiles the whole engine, World<T> and the narrow phase over the full
+// shape-pair matrix, at a cost of seconds per file. A game that defines XENO_COMPILED_LIB (the
+// CMake target xeno::compiled does it for whoever links it) sees the heavy templates below as
+// `extern template`s for float and double: its files only parse them, and one source file,
+// src/xeno_compiled.cpp (the static library xeno::compiled), compiles them once. The pattern of
+// fmt's and spdlog's compiled modes. Other scalar types stay header-only in both modes.
+#pragma once
+
+#include "collide/collide.hpp"
+#include "collide/raycast.hpp"
+#include "dynamics/snapshot.hpp"
+#include "dynamics/world.hpp"
+#include "shape/convex_hull.hpp"
+
+/// The templates compiled once in compiled mode, for scalar T. EXTERN is `extern` for the
+/// declarations every user file sees, empty for the definitions in src/xeno_compiled.cpp.
+#define XENO_DETAIL_COMPILED_TEMPLATES(EXTERN, T)                                                                            \
+    EXTERN template class xeno::World<T>;                                                                                     \
+    EXTERN template bool xeno::intersect<T>(const xeno::Shape<T>&, const xeno::Transform<T>&, const xeno::Shape<T>&,         \
+                                            const xeno::Transform<T>&);                                                      \
+    EXTERN template xeno::Penetration<T> xeno::collide<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,                  \
+                                                          const xeno::Shape<T>&, const xeno::Transform<T>&);                 \
+    EXTERN template xeno::ContactManifold<T> xeno::generate_contacts<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,    \
+                                                                        const xeno::Shape<T>&, const xeno::Transform<T>&, T); \
+    EXTERN template std::optional<xeno::RayHit<T>> xeno::raycast<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,        \
+                                                                    const xeno::Ray<T>&);                                    \
+    EXTERN template xeno::ConvexHull<T> xeno::make_convex_hull<T>(const std::vector<xeno::Vec3<T>>&);                        \
+    EXTERN template std::vector<std::uint8_t> xeno::save_snapshot<T>(const xeno::World<T>&);                                 \
+    EXTERN template void xeno::restore_snapshot<T>(xeno::World<T>&, const std::vector<std::uint8_t>&);
+
+#ifdef XENO_COMPILED_LIB
+XENO_DETAIL_COMPILED_TEMPLATES(extern, float)
+XENO_DETAIL_COMPILED_TEMPLATES(extern, double)
+#endif
