@@ -12,51 +12,21 @@
 #pragma once
 
 #include "../shape/box.hpp"
+#include "contact_points.hpp"
 #include "minkowski.hpp"
 
 namespace xeno {
 
 namespace detail {
 
-/// Closest points of segments p1–q1 and p2–q2 (Ericson 5.1.9), clamped to both segments.
-template <class T>
-void closest_points_of_segments(const Vec3<T>& p1, const Vec3<T>& q1, const Vec3<T>& p2, const Vec3<T>& q2, Vec3<T>& c1,
-                                Vec3<T>& c2) {
-    const Vec3<T> d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-    const T a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
-    const T tiny = ScalarTraits<T>::epsilon * ScalarTraits<T>::epsilon;
-    T s = T(0), u = T(0);
-    if (a <= tiny && e <= tiny) {
-        s = u = T(0);
-    } else if (a <= tiny) {
-        u = clamp(f / e, T(0), T(1));
-    } else {
-        const T c = dot(d1, r);
-        if (e <= tiny) {
-            s = clamp(-c / a, T(0), T(1));
-        } else {
-            const T b = dot(d1, d2), denom = a * e - b * b;
-            s = denom > tiny * a * e ? clamp((b * f - c * e) / denom, T(0), T(1)) : T(0);
-            u = (b * s + f) / e;
-            if (u < T(0)) {
-                u = T(0);
-                s = clamp(-c / a, T(0), T(1));
-            } else if (u > T(1)) {
-                u = T(1);
-                s = clamp((b - c) / a, T(0), T(1));
-            }
-        }
-    }
-    c1 = p1 + d1 * s;
-    c2 = p2 + d2 * u;
-}
-
 /// The least-overlap axis of two boxes (A's frame): normal n from A to B, overlap h (< 0 means
-/// separated by −h, at most the margin), and single-contact points on each body for edge contacts.
+/// separated by −h, at most the margin), and single-contact points (on both surfaces for edge
+/// contacts, and for face contacts too with on_surfaces, collide()'s contract).
 /// Returns false as soon as an axis separates them by more than the margin (then n, h, points
 /// are not set).
 template <class T>
-bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& h, Vec3<T>& point_a, Vec3<T>& point_b) {
+bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& h, Vec3<T>& point_a, Vec3<T>& point_b,
+                  bool on_surfaces = false) {
     const T margin = md.margin();
     const Vec3<T>& a = md.shape_a().half_extents();
     const Vec3<T>& b = md.shape_b().half_extents();
@@ -134,8 +104,15 @@ bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& 
         const int j = best_axis - 3;
         n = r.column(j) * (t_in_b[j] >= T(0) ? T(1) : T(-1));
     }
-    // Face contacts get their points from clipping; this single point (B's deepest vertex and its
-    // projection) is only the fallback.
+    if (on_surfaces) {
+        // collide(): the middle of where the two support features overlap across n, lifted onto
+        // both surfaces (contact_points.hpp). B's deepest corner alone can be metres outside a
+        // small A when B is large.
+        place_contact_points(md, n, h, static_cast<const Vec3<T>*>(nullptr), point_a, point_b);
+        return true;
+    }
+    // The manifold's fallback (face contacts get their points from clipping): B's deepest vertex
+    // and its projection.
     point_b = md.to_a(md.shape_b().support(md.direction_to_b(-n)));
     point_a = point_b + n * h;
     return true;

@@ -39,8 +39,12 @@ template <class T>
 struct Penetration {
     bool hit = false;
     Vec3<T> normal{};   ///< unit, world frame, from A to B
-    Vec3<T> point_a{};  ///< world, on A's surface, inside B (where the centre line leaves A ⊖ B)
-    Vec3<T> point_b{};  ///< world, on B's surface, inside A
+    /// world. collide(): on A's support plane along the normal and on or inside A within the
+    /// depth (on A's surface where the two support features overlap), with
+    /// point_a − point_b = depth · normal (contact_points.hpp). mpr_penetration(): the point of A
+    /// where the centre line leaves A ⊖ B.
+    Vec3<T> point_a{};
+    Vec3<T> point_b{};  ///< world, the same for B (on B's support plane along −normal)
     T depth{};          ///< metres, > 0 when hit; moving B by depth · normal makes them touch
     int iterations = 0; ///< support evaluations used (instrumentation)
 };
