@@ -21,12 +21,11 @@ namespace detail {
 
 /// The least-overlap axis of two boxes (A's frame): normal n from A to B, overlap h (< 0 means
 /// separated by −h, at most the margin), and single-contact points (on both surfaces for edge
-/// contacts, and for face contacts too with on_surfaces, collide()'s contract).
+/// contacts, and for face contacts too with OnSurfaces, collide()'s contract).
 /// Returns false as soon as an axis separates them by more than the margin (then n, h, points
 /// are not set).
-template <class T>
-bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& h, Vec3<T>& point_a, Vec3<T>& point_b,
-                  bool on_surfaces = false) {
+template <bool OnSurfaces = false, class T>
+bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& h, Vec3<T>& point_a, Vec3<T>& point_b) {
     const T margin = md.margin();
     const Vec3<T>& a = md.shape_a().half_extents();
     const Vec3<T>& b = md.shape_b().half_extents();
@@ -104,7 +103,7 @@ bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& 
         const int j = best_axis - 3;
         n = r.column(j) * (t_in_b[j] >= T(0) ? T(1) : T(-1));
     }
-    if (on_surfaces) {
+    if constexpr (OnSurfaces) {
         // collide(): the middle of where the two support features overlap across n, lifted onto
         // both surfaces (contact_points.hpp). B's deepest corner alone can be metres outside a
         // small A when B is large.

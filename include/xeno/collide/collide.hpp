@@ -61,12 +61,13 @@ void refine_normal(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_
 
 /// MPR + refinement on a Minkowski difference (possibly inflated by a margin), all in A's frame.
 /// On a hit gives the normal, the overlap h along it (h > −margin means within reach) and
-/// single-contact points h apart along n: on_surfaces, by collide()'s contract (contact_points.hpp:
-/// each on its own body's surface where the support features overlap); otherwise at the centre
-/// line's exit, the cheaper fallback build_manifold needs for point features.
-template <class A, class B>
+/// single-contact points h apart along n: with OnSurfaces, by collide()'s contract
+/// (contact_points.hpp: each on its own body's surface where the support features overlap);
+/// otherwise at the centre line's exit, the cheaper fallback build_manifold needs for point
+/// features (a template flag, so generate_contacts does not instantiate the contract's code).
+template <bool OnSurfaces = false, class A, class B>
 bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_type>& n, typename A::scalar_type& h,
-                     Vec3<typename A::scalar_type>& point_a, Vec3<typename A::scalar_type>& point_b, bool on_surfaces = false) {
+                     Vec3<typename A::scalar_type>& point_a, Vec3<typename A::scalar_type>& point_b) {
     using T = typename A::scalar_type;
     if constexpr (is_round_pair<A, B>) {
         // Spheres and capsules, with each other or a box: exact in closed form (round_pairs.hpp).
@@ -74,7 +75,7 @@ bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scala
     }
     if constexpr (std::is_same_v<A, Box<T>> && std::is_same_v<B, Box<T>>) {
         // Two boxes: the exact separating axis in closed form is cheaper than MPR and exact.
-        return box_box_axis(md, n, h, point_a, point_b, on_surfaces) && h > -md.margin();
+        return box_box_axis<OnSurfaces>(md, n, h, point_a, point_b) && h > -md.margin();
     }
     const Penetration<T> p = mpr(md, false);
     if (!p.hit) return false;
@@ -82,7 +83,7 @@ bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scala
     h = p.depth - md.margin();
     refine_normal(md, n, h);
     if (!(h > -md.margin())) return false;
-    if (on_surfaces) {
+    if constexpr (OnSurfaces) {
         // collide()'s contract: the points from the support features along the final normal
         // (contact_points.hpp), with a point inside both shapes as the fallback.
         const Vec3<T> inside = point_inside_both(md, p);
@@ -137,7 +138,7 @@ Penetration<T> collide(const Shape<T>& a, const Transform<T>& pose_a, const Shap
             Penetration<T> out;
             Vec3<T> n, pa, pb;
             T h;
-            if (!detail::refined_contact(md, n, h, pa, pb, true) || !(h > T(0))) return out;
+            if (!detail::refined_contact<true>(md, n, h, pa, pb) || !(h > T(0))) return out;
             out.hit = true;
             out.normal = pose_a.apply_direction(n);
             out.depth = h;
