@@ -547,8 +547,9 @@ void World<T>::rebuild_joint_pairs() {
 template <class T>
 void World<T>::prepare_joints(T h) {
     joint_rows_.clear();
-    const detail::Softness<T> soft = detail::Softness<T>::make(std::min(settings_.joint_hertz, T(0.25) / h), settings_.joint_damping_ratio, h);
-    const detail::Softness<T> limit_soft = detail::Softness<T>::make(std::min(settings_.contact_hertz, T(0.125) / h), settings_.contact_damping_ratio, h);
+    using detail::Softness;
+    const Softness<T> soft = Softness<T>::make(std::min(settings_.joint_hertz, T(0.25) / h), settings_.joint_damping_ratio, h);
+    const Softness<T> limit_soft = Softness<T>::make(std::min(settings_.contact_hertz, T(0.125) / h), settings_.contact_damping_ratio, h);
     for (std::uint32_t i = 0; i < joints_.size(); ++i) {
         Joint<T>& j = joints_[i];
         if (!j.alive) continue;
@@ -1061,9 +1062,10 @@ void World<T>::prepare(T dt) {
     constraints_.clear();
     constraints_.reserve(contacts_.size());
     const T contact_hertz = std::min(settings_.contact_hertz, T(0.125) / h);
-    const detail::Softness<T> soft = detail::Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
-    const detail::Softness<T> soft_static =
-        detail::Softness<T>::make(std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h), settings_.contact_damping_ratio, h);
+    using detail::Softness;
+    const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
+    const Softness<T> soft_static =
+        Softness<T>::make(std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h), settings_.contact_damping_ratio, h);
     for (std::uint32_t m = 0; m < contacts_.size(); ++m) {
         const Contact<T>& contact = contacts_[m];
         if (contact.sensor || contact.manifold.count == 0) continue;
@@ -1252,7 +1254,9 @@ void World<T>::discard_overflowed_solve() {
         c.friction_1 = c.friction_2 = c.twist_impulse = T(0);
     }
     for (Joint<T>& j : joints_) {
-        if (is_finite(j.linear_impulse) && is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) && std::isfinite(j.motor_impulse)) continue;
+        if (is_finite(j.linear_impulse) && is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) &&
+            std::isfinite(j.motor_impulse))
+            continue;
         j.linear_impulse = j.angular_impulse = Vec3<T>::zero();
         j.axial_impulse = j.motor_impulse = T(0);
     }
@@ -1296,7 +1300,17 @@ void World<T>::update_sleep(T dt) {
     }
 }
 
-namespace f32 { using World = xeno::World<float>; using Contact = xeno::Contact<float>; using ContactEvent = xeno::ContactEvent<float>; using WorldRayHit = xeno::WorldRayHit<float>; }
-namespace f64 { using World = xeno::World<double>; using Contact = xeno::Contact<double>; using ContactEvent = xeno::ContactEvent<double>; using WorldRayHit = xeno::WorldRayHit<double>; }
+namespace f32 {
+using World = xeno::World<float>;
+using Contact = xeno::Contact<float>;
+using ContactEvent = xeno::ContactEvent<float>;
+using WorldRayHit = xeno::WorldRayHit<float>;
+}  // namespace f32
+namespace f64 {
+using World = xeno::World<double>;
+using Contact = xeno::Contact<double>;
+using ContactEvent = xeno::ContactEvent<double>;
+using WorldRayHit = xeno::WorldRayHit<double>;
+}  // namespace f64
 
 }  // namespace xeno
