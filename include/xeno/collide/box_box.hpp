@@ -104,9 +104,31 @@ bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& 
         n = r.column(j) * (t_in_b[j] >= T(0) ? T(1) : T(-1));
     }
     if constexpr (OnSurfaces) {
-        // collide(): the middle of where the two support features overlap across n, lifted onto
-        // both surfaces (contact_points.hpp). B's deepest corner alone can be metres outside a
-        // small A when B is large.
+        // collide(): the incident box's deepest corner when it lies over the reference face (then
+        // it and its projection are on both surfaces: the common case, and cheap); else the middle
+        // of where the two support features overlap across n, lifted onto both surfaces
+        // (contact_points.hpp). The corner alone can be metres outside a small box when the other
+        // is large.
+        auto over_face = [](const Vec3<T>& p, const Vec3<T>& half, int axis) {
+            for (int k = 0; k < 3; ++k)
+                if (k != axis && std::abs(p[k]) > half[k]) return false;
+            return true;
+        };
+        if (best_axis < 3) {
+            const Vec3<T> corner_b = md.to_a(md.shape_b().support(md.direction_to_b(-n)));
+            if (over_face(corner_b, a, best_axis)) {
+                point_b = corner_b;
+                point_a = corner_b + n * h;
+                return true;
+            }
+        } else {
+            const Vec3<T> corner_a = md.shape_a().support(n);
+            if (over_face(transposed_transform(r, corner_a - t), b, best_axis - 3)) {
+                point_a = corner_a;
+                point_b = corner_a - n * h;
+                return true;
+            }
+        }
         place_contact_points(md, n, h, static_cast<const Vec3<T>*>(nullptr), point_a, point_b);
         return true;
     }
