@@ -4,10 +4,11 @@
 // Sequential impulses on contacts (Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005;
 // "Fast and Simple Physics using Sequential Impulses", GDC 2006; docs/solver-design.md, "Sequential
 // impulses"), in the phases World::step calls: prepare → (per substep: warm_start → solve(bias) →
-// relax) → restitution → store. Per contact point one normal row; per manifold one two-axis
-// friction row at the centre of the patch and one twist row about the normal (Box3D's central
-// friction; docs/solver-design.md, "Central friction"): order-independent, so a symmetric box
-// sliding straight stays straight.
+// relax) → restitution → store. This file holds the rows and their rules; the warm start, solve
+// and relax passes run W manifolds at a time in wide_contact_solver.hpp. Per contact point one
+// normal row; per manifold one two-axis friction row at the centre of the patch and one twist row
+// about the normal (Box3D's central friction; docs/solver-design.md, "Central friction"):
+// order-independent, so a symmetric box sliding straight stays straight.
 //
 // Normal row, with the current separation s updated from the bodies' displacement this step:
 //   s > 0 (speculative)  bias = s/h: the bodies may close the gap this substep, not more;
@@ -71,108 +72,6 @@ struct SolvePass {
     T max_push_out_speed{};
 };
 
-
-template <class T>
-void apply_contact_impulses(const ContactConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b) {
-    for (int i = 0; i < c.count; ++i) {
-        const ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
-        const Vec3<T> impulse = c.normal * p.normal_impulse;
-        a.apply(p.r_a, -impulse);
-        b.apply(p.r_b, impulse);
-    }
-    const Vec3<T> friction = c.t1 * c.friction_1 + c.t2 * c.friction_2;
-    a.apply(c.rc_a, -friction);
-    b.apply(c.rc_b, friction);
-    const Vec3<T> twist = c.normal * c.twist_impulse;
-    a.w -= a.inv_inertia * twist;
-    b.w += b.inv_inertia * twist;
-}
-
-
-/// Applies last step's impulses (warm start) to the bodies.
-template <class T>
-void warm_start(const std::vector<ContactConstraint<T>>& constraints, std::vector<SolverBody<T>>& bodies) {
-    for (const ContactConstraint<T>& c : constraints) detail::apply_contact_impulses(c, bodies[c.a], bodies[c.b]);
-    bodies[0] = SolverBody<T>{};  // the static stand-in stays at rest
-}
-
-/// One Gauss–Seidel sweep over every contact row (normal rows first, then friction and twist).
-template <class T>
-void solve_contacts(std::vector<ContactConstraint<T>>& constraints, std::vector<SolverBody<T>>& bodies, const SolvePass<T>& pass) {
-    for (ContactConstraint<T>& c : constraints) {
-        SolverBody<T>& a = bodies[c.a];
-        SolverBody<T>& b = bodies[c.b];
-        T total_normal = T(0), total_twist_bound = T(0);
-        for (int i = 0; i < c.count; ++i) {
-            ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
-            // Current separation from the displacement of both anchors this step.
-            const Vec3<T> d = (b.dp - a.dp) + (rotate(b.dq, p.r_b) - rotate(a.dq, p.r_a));
-            const T s = dot(d, c.normal) + p.adjusted_separation;
-            T bias = T(0), mass_scale = T(1), impulse_scale = T(0);
-            if (s > T(0)) {
-                bias = s * pass.inv_h;  // speculative: close the gap, no further
-            } else if (pass.use_bias) {
-                if (pass.mode == SolverMode::soft_step) {
-                    bias = std::max(c.softness.bias_rate * s, -pass.max_push_out_speed);
-                    mass_scale = c.softness.mass_scale;
-                    impulse_scale = c.softness.impulse_scale;
-                } else {
-                    bias = std::max(pass.baumgarte * pass.inv_h * std::min(s + pass.linear_slop, T(0)), -pass.max_push_out_speed);
-                }
-            }
-            const T vn = dot(b.velocity_at(p.r_b) - a.velocity_at(p.r_a), c.normal);
-            const T delta = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
-            const T updated = std::max(p.normal_impulse + delta, T(0));
-            const T applied = updated - p.normal_impulse;
-            p.normal_impulse = updated;
-            p.max_normal_impulse = std::max(p.max_normal_impulse, updated);
-            const Vec3<T> impulse = c.normal * applied;
-            a.apply(p.r_a, -impulse);
-            b.apply(p.r_b, impulse);
-            total_normal += updated;
-        }
-        total_twist_bound = c.friction * c.twist_lever * total_normal;
-
-        // Central friction: a 2-D row at the patch centre, clamped to the Coulomb disc.
-        const Vec3<T> dv = b.velocity_at(c.rc_b) - a.velocity_at(c.rc_a);
-        const T v1 = dot(dv, c.t1), v2 = dot(dv, c.t2);
-        T f1 = c.friction_1 - (c.k11 * v1 + c.k12 * v2);
-        T f2 = c.friction_2 - (c.k12 * v1 + c.k22 * v2);
-        const T bound = c.friction * total_normal;
-        const T magnitude_sq = f1 * f1 + f2 * f2;
-        if (magnitude_sq > bound * bound) {
-            const T scale = bound / std::sqrt(magnitude_sq);
-            f1 *= scale;
-            f2 *= scale;
-        }
-        const Vec3<T> friction = c.t1 * (f1 - c.friction_1) + c.t2 * (f2 - c.friction_2);
-        c.friction_1 = f1;
-        c.friction_2 = f2;
-        a.apply(c.rc_a, -friction);
-        b.apply(c.rc_b, friction);
-
-        // Twist friction about the normal.
-        if (c.twist_mass > T(0)) {
-            const T wn = dot(b.w - a.w, c.normal);
-            const T updated = clamp(c.twist_impulse - c.twist_mass * wn, -total_twist_bound, total_twist_bound);
-            const Vec3<T> twist = c.normal * (updated - c.twist_impulse);
-            c.twist_impulse = updated;
-            a.w -= a.inv_inertia * twist;
-            b.w += b.inv_inertia * twist;
-        }
-    }
-    bodies[0] = SolverBody<T>{};
-}
-
-/// Adds each row's substep impulse to its step total (after every substep).
-template <class T>
-void accumulate_step_impulses(std::vector<ContactConstraint<T>>& constraints) {
-    for (ContactConstraint<T>& c : constraints)
-        for (int i = 0; i < c.count; ++i) {
-            ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
-            p.step_impulse += p.normal_impulse;
-        }
-}
 
 /// The restitution pass after the substeps (see the file comment). A few sweeps: one
 /// Gauss–Seidel sweep over a face's four points leaves the face short of the target speed

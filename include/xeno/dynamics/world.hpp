@@ -29,6 +29,7 @@
 #include "../contact/manifold.hpp"
 #include "body.hpp"
 #include "contact_solver.hpp"
+#include "wide_contact_solver.hpp"
 #include "integrator.hpp"
 #include "joint.hpp"
 
@@ -86,6 +87,8 @@ struct StepStats {
     std::size_t contacts = 0;        ///< manifolds with at least one point
     std::size_t contact_points = 0;  ///< rows solved
     std::size_t awake_bodies = 0;
+    std::size_t colours = 0;         ///< colours the solved manifolds took (docs/solver.md, "Colours")
+    std::size_t overflow_contacts = 0;  ///< manifolds no colour could take, solved one at a time
 };
 
 /// A rigid-body world of scalar T.
@@ -312,6 +315,7 @@ private:
     std::vector<std::uint32_t> solver_index_;     ///< per slot: index into solver_bodies_ (0: none)
     std::vector<std::uint32_t> solver_slot_;      ///< per solver body: its slot
     std::vector<detail::ContactConstraint<T>> constraints_;
+    detail::WideContactRows<T> wide_rows_;  ///< constraints_ coloured and packed in SIMD lanes
     std::vector<Joint<T>> joints_;
     std::vector<std::uint32_t> free_joints_;
     std::vector<detail::JointConstraint<T>> joint_rows_;
@@ -1139,6 +1143,9 @@ void World<T>::prepare(T dt) {
         constraints_.push_back(c);
         stats_.contact_points += static_cast<std::size_t>(c.count);
     }
+    wide_rows_.build(constraints_, solver_bodies_);
+    stats_.colours = wide_rows_.colours_used();
+    stats_.overflow_contacts = wide_rows_.overflow_rows();
 }
 
 template <class T>
@@ -1166,14 +1173,14 @@ void World<T>::solve(T dt) {
         if (settings_.warm_starting) {
             for (const detail::JointConstraint<T>& c : joint_rows_)
                 detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
-            detail::warm_start(constraints_, solver_bodies_);
+            wide_rows_.warm_start(solver_bodies_);
         }
         pass.use_bias = true;
         for (int it = 0; it < settings_.velocity_iterations; ++it) {
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
                 for (const detail::JointConstraint<T>& c : joint_rows_)
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
-            detail::solve_contacts(constraints_, solver_bodies_, pass);
+            wide_rows_.solve(solver_bodies_, pass);
         }
         for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
             const Body<T>& b = bodies_[solver_slot_[i]];
@@ -1185,11 +1192,12 @@ void World<T>::solve(T dt) {
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
                 for (const detail::JointConstraint<T>& c : joint_rows_)
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], false, h);
-            detail::solve_contacts(constraints_, solver_bodies_, pass);
+            wide_rows_.solve(solver_bodies_, pass);
         }
         solver_bodies_[0] = detail::SolverBody<T>{};
-        detail::accumulate_step_impulses(constraints_);
+        wide_rows_.accumulate_step_impulses();
     }
+    wide_rows_.unpack(constraints_);
     detail::apply_restitution(constraints_, solver_bodies_, settings_.restitution_threshold);
 }
 

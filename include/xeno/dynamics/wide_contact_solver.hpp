@@ -1,0 +1,336 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// The contact rows of contact_solver.hpp solved W manifolds at a time (docs/solver.md, "Wide
+// rows"; Box2D v3 and Box3D's contact_solver.c do the same with their wide constraints). Rows are
+// coloured (constraint_graph.hpp) and packed colour by colour into groups of W lanes, one
+// manifold per lane; a group gathers its bodies' velocities and step displacements into lanes,
+// runs the normal, central-friction and twist rows in SIMD, and scatters the velocities back.
+// Nothing in one colour shares a moving body, so the lanes are independent and a row gets the
+// same bits whatever W it ran in; the overflow rows run through the same code one at a time.
+//
+// Per lane the Jacobians are precomputed once per step: r × n and I⁻¹ (r × n) for each point,
+// rc × t and I⁻¹ (rc × t) for friction, I⁻¹ n for twist, so a row costs dot products and
+// multiply-adds instead of cross products and matrix products, and the solve needs no masses
+// from the bodies.
+#pragma once
+
+#include "../math/wide.hpp"
+#include "constraint_graph.hpp"
+#include "contact_solver.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+namespace xeno {
+namespace detail {
+
+/// One point slot of W manifolds.
+template <class V>
+struct WidePoint {
+    WideVec3<V> r_a, r_b;    ///< m, centres of mass to the point
+    WideVec3<V> rn_a, rn_b;  ///< r × n
+    WideVec3<V> ia, ib;      ///< I⁻¹ (r × n), world
+    V adjusted_separation, normal_mass, normal_impulse, max_normal_impulse, step_impulse;
+};
+
+/// W manifolds side by side. Lanes beyond the colour's rows are padding: both bodies the static
+/// stand-in, no points, every number zero.
+template <class T, int W>
+struct WideContact {
+    using V = Wide<T, W>;
+    std::uint32_t a[W], b[W];        ///< solver bodies (0: static stand-in)
+    std::uint32_t row[W];            ///< index into the scalar rows (padding: ~0)
+    int max_count;                   ///< points of the fullest lane
+    V count;                         ///< points per lane
+    WideVec3<V> normal, t1, t2;
+    V inv_mass_a, inv_mass_b, friction;
+    V bias_rate, mass_scale, impulse_scale;  ///< the lane's softness
+    WidePoint<V> points[4];
+    WideVec3<V> a1, a2, b1, b2;      ///< rc × t1, rc × t2 for A and B
+    WideVec3<V> ia1, ia2, ib1, ib2;  ///< I⁻¹ of those
+    V k11, k12, k22, friction_1, friction_2;
+    WideVec3<V> ia_n, ib_n;          ///< I⁻¹ n
+    V twist_mass, twist_impulse, twist_friction;  ///< twist_friction: µ × the mean lever
+};
+
+/// The velocities (and, for the biased rows, the step displacement) of W bodies in lanes.
+template <class V>
+struct WideBody {
+    WideVec3<V> v, w, dp;
+    WideQuat<V> dq;
+};
+
+template <class T, int W>
+XENO_WIDE_INLINE WideBody<Wide<T, W>> gather(const std::vector<SolverBody<T>>& bodies, const std::uint32_t (&index)[W], bool displacement) {
+    using V = Wide<T, W>;
+    alignas(64) T buf[13][W];
+    const int rows = displacement ? 13 : 6;
+    for (int l = 0; l < W; ++l) {
+        const SolverBody<T>& s = bodies[index[l]];
+        const T values[13] = {s.v.x, s.v.y, s.v.z, s.w.x, s.w.y, s.w.z, s.dp.x, s.dp.y, s.dp.z, s.dq.w, s.dq.x, s.dq.y, s.dq.z};
+        for (int r = 0; r < rows; ++r) buf[r][l] = values[r];
+    }
+    WideBody<V> g;
+    g.v = {V::load(buf[0]), V::load(buf[1]), V::load(buf[2])};
+    g.w = {V::load(buf[3]), V::load(buf[4]), V::load(buf[5])};
+    if (displacement) {
+        g.dp = {V::load(buf[6]), V::load(buf[7]), V::load(buf[8])};
+        g.dq = {V::load(buf[9]), {V::load(buf[10]), V::load(buf[11]), V::load(buf[12])}};
+    }
+    return g;
+}
+
+/// Writes the lanes' velocities back; the static stand-in (padding and static sides) is skipped.
+template <class T, int W>
+XENO_WIDE_INLINE void scatter(const WideBody<Wide<T, W>>& g, std::vector<SolverBody<T>>& bodies, const std::uint32_t (&index)[W]) {
+    alignas(64) T buf[6][W];
+    g.v.x.store(buf[0]), g.v.y.store(buf[1]), g.v.z.store(buf[2]);
+    g.w.x.store(buf[3]), g.w.y.store(buf[4]), g.w.z.store(buf[5]);
+    for (int l = 0; l < W; ++l) {
+        if (index[l] == 0) continue;
+        SolverBody<T>& s = bodies[index[l]];
+        s.v = {buf[0][l], buf[1][l], buf[2][l]};
+        s.w = {buf[3][l], buf[4][l], buf[5][l]};
+    }
+}
+
+/// Applies an impulse along the lanes' directions to both bodies where `m` holds:
+/// A gets −(lin × λ) / −(ang_a λ), B gets +(lin × λ) / +(ang_b λ).
+template <class V>
+XENO_WIDE_INLINE void apply_wide(WideBody<V>& A, WideBody<V>& B, const typename V::Mask& m, const WideVec3<V>& lin, const V& lambda, const V& inv_mass_a,
+                const V& inv_mass_b, const WideVec3<V>& ang_a, const WideVec3<V>& ang_b) {
+    A.v = select(m, A.v - lin * (lambda * inv_mass_a), A.v);
+    A.w = select(m, A.w - ang_a * lambda, A.w);
+    B.v = select(m, B.v + lin * (lambda * inv_mass_b), B.v);
+    B.w = select(m, B.w + ang_b * lambda, B.w);
+}
+
+/// Warm start: last step's impulses applied, point by point, then friction, then twist (the
+/// order of apply_contact_impulses).
+template <class T, int W>
+void warm_start_wide(const WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies) {
+    using V = Wide<T, W>;
+    WideBody<V> A = gather<T, W>(bodies, c.a, false), B = gather<T, W>(bodies, c.b, false);
+    for (int i = 0; i < c.max_count; ++i) {
+        const WidePoint<V>& p = c.points[i];
+        apply_wide(A, B, V::splat(T(i)) < c.count, c.normal, p.normal_impulse, c.inv_mass_a, c.inv_mass_b, p.ia, p.ib);
+    }
+    // Padding lanes need no mask: they write to the static stand-in, which scatter skips.
+    const WideVec3<V> f = c.t1 * c.friction_1 + c.t2 * c.friction_2;
+    A.v = A.v - f * c.inv_mass_a;
+    A.w = A.w - (c.ia1 * c.friction_1 + c.ia2 * c.friction_2);
+    B.v = B.v + f * c.inv_mass_b;
+    B.w = B.w + (c.ib1 * c.friction_1 + c.ib2 * c.friction_2);
+    A.w = A.w - c.ia_n * c.twist_impulse;
+    B.w = B.w + c.ib_n * c.twist_impulse;
+    scatter<T, W>(A, bodies, c.a);
+    scatter<T, W>(B, bodies, c.b);
+}
+
+/// One Gauss–Seidel pass over W manifolds: the rows of solve_contacts in contact_solver.hpp.
+template <class T, int W>
+void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const SolvePass<T>& pass) {
+    using V = Wide<T, W>;
+    const V zero = V::splat(T(0)), one = V::splat(T(1)), inv_h = V::splat(pass.inv_h);
+    const V max_push = V::splat(pass.max_push_out_speed);
+    WideBody<V> A = gather<T, W>(bodies, c.a, true), B = gather<T, W>(bodies, c.b, true);
+    V total = zero;
+    for (int i = 0; i < c.max_count; ++i) {
+        WidePoint<V>& p = c.points[i];
+        const typename V::Mask active = V::splat(T(i)) < c.count;
+        // Current separation from the displacement of both anchors this step.
+        const WideVec3<V> d = (B.dp - A.dp) + (rotate(B.dq, p.r_b) - rotate(A.dq, p.r_a));
+        const V s = dot(d, c.normal) + p.adjusted_separation;
+        V bias = zero, mass_scale = one, impulse_scale = zero;
+        if (pass.use_bias && pass.mode == SolverMode::soft_step) {
+            bias = max(c.bias_rate * s, zero - max_push);
+            mass_scale = c.mass_scale;
+            impulse_scale = c.impulse_scale;
+        } else if (pass.use_bias) {
+            bias = max(V::splat(pass.baumgarte * pass.inv_h) * min(s + V::splat(pass.linear_slop), zero), zero - max_push);
+        }
+        const typename V::Mask speculative = s > zero;  // close the gap, no further
+        bias = select(speculative, s * inv_h, bias);
+        mass_scale = select(speculative, one, mass_scale);
+        impulse_scale = select(speculative, zero, impulse_scale);
+
+        const V vn = dot(B.v - A.v, c.normal) + dot(B.w, p.rn_b) - dot(A.w, p.rn_a);
+        const V delta = zero - p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+        const V updated = select(active, max(p.normal_impulse + delta, zero), p.normal_impulse);
+        const V applied = updated - p.normal_impulse;
+        p.normal_impulse = updated;
+        p.max_normal_impulse = max(p.max_normal_impulse, updated);
+        apply_wide(A, B, active, c.normal, applied, c.inv_mass_a, c.inv_mass_b, p.ia, p.ib);
+        total = total + select(active, updated, zero);
+    }
+
+    // Central friction: a 2-D row at the patch centre, clamped to the Coulomb disc.
+    const WideVec3<V> dv = B.v - A.v;
+    const V v1 = dot(dv, c.t1) + dot(B.w, c.b1) - dot(A.w, c.a1);
+    const V v2 = dot(dv, c.t2) + dot(B.w, c.b2) - dot(A.w, c.a2);
+    V f1 = c.friction_1 - (c.k11 * v1 + c.k12 * v2);
+    V f2 = c.friction_2 - (c.k12 * v1 + c.k22 * v2);
+    const V bound = c.friction * total;
+    const V magnitude_sq = f1 * f1 + f2 * f2;
+    const typename V::Mask outside = magnitude_sq > bound * bound;
+    const V scale = bound / sqrt(select(outside, magnitude_sq, one));
+    f1 = select(outside, f1 * scale, f1);
+    f2 = select(outside, f2 * scale, f2);
+    const V d1 = f1 - c.friction_1, d2 = f2 - c.friction_2;
+    c.friction_1 = f1;
+    c.friction_2 = f2;
+    const WideVec3<V> f = c.t1 * d1 + c.t2 * d2;
+    A.v = A.v - f * c.inv_mass_a;
+    A.w = A.w - (c.ia1 * d1 + c.ia2 * d2);
+    B.v = B.v + f * c.inv_mass_b;
+    B.w = B.w + (c.ib1 * d1 + c.ib2 * d2);
+
+    // Twist friction about the normal.
+    const typename V::Mask twisting = c.twist_mass > zero;
+    const V bound_twist = c.twist_friction * total;
+    const V wn = dot(B.w - A.w, c.normal);
+    const V twist = min(max(c.twist_impulse - c.twist_mass * wn, zero - bound_twist), bound_twist);
+    const V d_twist = twist - c.twist_impulse;
+    c.twist_impulse = select(twisting, twist, c.twist_impulse);
+    A.w = select(twisting, A.w - c.ia_n * d_twist, A.w);
+    B.w = select(twisting, B.w + c.ib_n * d_twist, B.w);
+    scatter<T, W>(A, bodies, c.a);
+    scatter<T, W>(B, bodies, c.b);
+}
+
+/// Fills lane `l` of a group from the scalar row and the bodies' frozen masses.
+template <class T, int W>
+void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactConstraint<T>& k, const std::vector<SolverBody<T>>& bodies) {
+    const SolverBody<T>& sa = bodies[k.a];
+    const SolverBody<T>& sb = bodies[k.b];
+    auto put = [l](WideVec3<Wide<T, W>>& dst, const Vec3<T>& v) { dst.x.set(l, v.x), dst.y.set(l, v.y), dst.z.set(l, v.z); };
+    c.a[l] = k.a, c.b[l] = k.b, c.row[l] = row;
+    c.max_count = std::max(c.max_count, k.count);
+    c.count.set(l, static_cast<T>(k.count));
+    put(c.normal, k.normal), put(c.t1, k.t1), put(c.t2, k.t2);
+    c.inv_mass_a.set(l, sa.inv_mass), c.inv_mass_b.set(l, sb.inv_mass), c.friction.set(l, k.friction);
+    c.bias_rate.set(l, k.softness.bias_rate), c.mass_scale.set(l, k.softness.mass_scale), c.impulse_scale.set(l, k.softness.impulse_scale);
+    for (int i = 0; i < k.count; ++i) {
+        const ContactConstraintPoint<T>& q = k.points[static_cast<std::size_t>(i)];
+        WidePoint<Wide<T, W>>& p = c.points[i];
+        const Vec3<T> rn_a = cross(q.r_a, k.normal), rn_b = cross(q.r_b, k.normal);
+        put(p.r_a, q.r_a), put(p.r_b, q.r_b), put(p.rn_a, rn_a), put(p.rn_b, rn_b);
+        put(p.ia, sa.inv_inertia * rn_a), put(p.ib, sb.inv_inertia * rn_b);
+        p.adjusted_separation.set(l, q.adjusted_separation), p.normal_mass.set(l, q.normal_mass);
+        p.normal_impulse.set(l, q.normal_impulse), p.max_normal_impulse.set(l, q.max_normal_impulse), p.step_impulse.set(l, q.step_impulse);
+    }
+    const Vec3<T> a1 = cross(k.rc_a, k.t1), a2 = cross(k.rc_a, k.t2), b1 = cross(k.rc_b, k.t1), b2 = cross(k.rc_b, k.t2);
+    put(c.a1, a1), put(c.a2, a2), put(c.b1, b1), put(c.b2, b2);
+    put(c.ia1, sa.inv_inertia * a1), put(c.ia2, sa.inv_inertia * a2), put(c.ib1, sb.inv_inertia * b1), put(c.ib2, sb.inv_inertia * b2);
+    c.k11.set(l, k.k11), c.k12.set(l, k.k12), c.k22.set(l, k.k22), c.friction_1.set(l, k.friction_1), c.friction_2.set(l, k.friction_2);
+    put(c.ia_n, sa.inv_inertia * k.normal), put(c.ib_n, sb.inv_inertia * k.normal);
+    c.twist_mass.set(l, k.twist_mass), c.twist_impulse.set(l, k.twist_impulse), c.twist_friction.set(l, k.friction * k.twist_lever);
+}
+
+/// Copies lane `l`'s impulses back into its scalar row (for restitution, events and the next
+/// step's warm start).
+template <class T, int W>
+void unpack_lane(const WideContact<T, W>& c, int l, ContactConstraint<T>& k) {
+    for (int i = 0; i < k.count; ++i) {
+        const WidePoint<Wide<T, W>>& p = c.points[i];
+        ContactConstraintPoint<T>& q = k.points[static_cast<std::size_t>(i)];
+        q.normal_impulse = p.normal_impulse.get(l);
+        q.max_normal_impulse = p.max_normal_impulse.get(l);
+        q.step_impulse = p.step_impulse.get(l);
+    }
+    k.friction_1 = c.friction_1.get(l);
+    k.friction_2 = c.friction_2.get(l);
+    k.twist_impulse = c.twist_impulse.get(l);
+}
+
+/// The step's contact rows in colour order, W lanes per group, and the overflow one at a time.
+template <class T>
+class WideContactRows {
+public:
+    static constexpr int width = native_width<T>();
+    using Group = WideContact<T, width>;
+    using Single = WideContact<T, 1>;
+
+    /// Colours and packs `rows` (their bodies' masses frozen in `bodies`).
+    void build(const std::vector<ContactConstraint<T>>& rows, const std::vector<SolverBody<T>>& bodies) {
+        colouring_.build(rows.size(), bodies.size(), [&](std::size_t i) { return rows[i].a; }, [&](std::size_t i) { return rows[i].b; });
+        groups_.clear();
+        colour_groups_.assign(1, 0u);
+        for (int colour = 0; colour < ConstraintColouring::colours; ++colour) {
+            const std::uint32_t begin = colouring_.colour_begin[static_cast<std::size_t>(colour)];
+            const std::uint32_t end = colouring_.colour_begin[static_cast<std::size_t>(colour) + 1];
+            for (std::uint32_t i = begin; i < end; i += width) {
+                groups_.push_back(empty<width>());
+                for (int l = 0; l < width && i + static_cast<std::uint32_t>(l) < end; ++l) {
+                    const std::uint32_t row = colouring_.order[i + static_cast<std::uint32_t>(l)];
+                    pack_lane(groups_.back(), l, row, rows[row], bodies);
+                }
+            }
+            colour_groups_.push_back(static_cast<std::uint32_t>(groups_.size()));
+        }
+        overflow_.clear();
+        for (const std::uint32_t row : colouring_.overflow) {
+            overflow_.push_back(empty<1>());
+            pack_lane(overflow_.back(), 0, row, rows[row], bodies);
+        }
+    }
+
+    void warm_start(std::vector<SolverBody<T>>& bodies) const {
+        for (const Single& c : overflow_) warm_start_wide(c, bodies);
+        for (const Group& c : groups_) warm_start_wide(c, bodies);
+        bodies[0] = SolverBody<T>{};
+    }
+    void solve(std::vector<SolverBody<T>>& bodies, const SolvePass<T>& pass) {
+        for (Single& c : overflow_) solve_wide(c, bodies, pass);
+        for (Group& c : groups_) solve_wide(c, bodies, pass);
+        bodies[0] = SolverBody<T>{};
+    }
+    /// Adds each row's substep impulse to its step total (after every substep).
+    void accumulate_step_impulses() {
+        for (Single& c : overflow_) accumulate(c);
+        for (Group& c : groups_) accumulate(c);
+    }
+    /// Copies the impulses back into the scalar rows.
+    void unpack(std::vector<ContactConstraint<T>>& rows) const {
+        for (const Single& c : overflow_) unpack_lane(c, 0, rows[c.row[0]]);
+        for (const Group& c : groups_)
+            for (int l = 0; l < width; ++l)
+                if (c.row[l] != ~0u) unpack_lane(c, l, rows[c.row[l]]);
+    }
+
+    std::size_t overflow_rows() const { return overflow_.size(); }
+    std::size_t colours_used() const {
+        std::size_t used = 0;
+        for (int c = 0; c < ConstraintColouring::colours; ++c) used += colouring_.colour_size(c) > 0 ? 1 : 0;
+        return used;
+    }
+    const ConstraintColouring& colouring() const { return colouring_; }
+    std::size_t bytes() const {
+        return groups_.capacity() * sizeof(Group) + overflow_.capacity() * sizeof(Single) +
+               (colouring_.order.capacity() + colouring_.overflow.capacity() + colouring_.used_.capacity()) * sizeof(std::uint32_t) +
+               colouring_.colour_of_.capacity();
+    }
+
+private:
+    template <int W>
+    static WideContact<T, W> empty() {
+        WideContact<T, W> c{};
+        for (int l = 0; l < W; ++l) c.a[l] = 0, c.b[l] = 0, c.row[l] = ~0u;
+        c.max_count = 0;
+        return c;
+    }
+    template <int W>
+    static void accumulate(WideContact<T, W>& c) {
+        for (int i = 0; i < c.max_count; ++i) c.points[i].step_impulse = c.points[i].step_impulse + c.points[i].normal_impulse;
+    }
+
+    ConstraintColouring colouring_;
+    std::vector<Group> groups_;
+    std::vector<std::uint32_t> colour_groups_;  ///< per colour, the first group (colours + 1)
+    std::vector<Single> overflow_;
+};
+
+}  // namespace detail
+}  // namespace xeno
