@@ -5,9 +5,12 @@
 // double, one thread, with the contacts solved per step; whether the 5,050-box pyramid stands
 // after 10 s (no box's centre more than a quarter box from where it was placed) and its top's sag;
 // and memory per body and per touching pair measured by a counting allocator (every heap byte
-// the world allocates, container slack included), beside the thesis's Quadro 25.
+// the world allocates, container slack included), beside the thesis's Quadro 25. Built with
+// Bullet (XENO_HAVE_BULLET, bench/CMakeLists.txt), each pyramid also runs in Bullet and its row
+// and xeno float's time over Bullet's print under xeno's float row (bullet_peer.hpp).
 //
-//   xeno_step_bench [--quick] [--out DIR]    (--quick: fewer steps and no 5,050-box pyramid)
+//   xeno_step_bench [--quick]    (--quick: fewer steps and no 5,050-box pyramid)
+#include "bullet_peer.hpp"
 #include "scenes/random.hpp"
 #include "scenes/stacks.hpp"
 
@@ -97,8 +100,24 @@ std::vector<BodyId> drop_boxes(World<T>& world, int n) {
     return ids;
 }
 
+/// One pyramid run's numbers, xeno's or Bullet's.
+struct PyramidRun {
+    std::size_t boxes;
+    Timing timing;
+    double worst_move;  ///< m: the largest distance of a box's centre from where it was placed
+    double top_sag;     ///< m: how far the top box's centre went down
+};
+
+/// `engine`: xeno's precision, or "bullet". One layout for both, so the rows line up.
+void print_pyramid_row(int base, const char* engine, const PyramidRun& r, int steps) {
+    std::printf("pyramid-%-4d %6zu boxes %-6s %8.2f ms/step %7.0f contacts %7.0f points | after %4.1f s: worst move %.3f m, top sag %.4f m%s\n",
+                base, r.boxes, engine, r.timing.ms_per_step, r.timing.contacts_per_step, r.timing.points_per_step, steps / 60.0, r.worst_move,
+                r.top_sag, base == 100 ? (r.worst_move < 0.25 ? "  (stands: < 0.25)" : "  (FAILS: >= 0.25)") : "");
+}
+
+/// Runs and prints xeno's row for the pyramid; returns its ms/step (for the Bullet ratio).
 template <class T>
-void pyramid_row(int base, int steps) {
+double pyramid_row(int base, int steps) {
     World<T> world(no_sleep<T>());
     const scenes::Scene scene = scenes::pyramid(world, base);
     std::vector<Vec3<T>> placed;
@@ -107,9 +126,27 @@ void pyramid_row(int base, int steps) {
     double worst = 0;
     for (std::size_t i = 0; i < placed.size(); ++i) worst = std::max(worst, double(length(world.body(scene.bodies[i]).position() - placed[i])));
     const double sag = double(placed.back().y - world.body(scene.bodies.back()).position().y);
-    std::printf("pyramid-%-4d %6zu boxes %-6s %8.2f ms/step %7.0f contacts %7.0f points | after %4.1f s: worst move %.3f m, top sag %.4f m%s\n",
-                base, scene.bodies.size(), precision<T>(), t.ms_per_step, t.contacts_per_step, t.points_per_step, steps / 60.0, worst, sag,
-                base == 100 ? (worst < 0.25 ? "  (stands: < 0.25)" : "  (FAILS: >= 0.25)") : "");
+    print_pyramid_row(base, precision<T>(), {scene.bodies.size(), t, worst, sag}, steps);
+    return t.ms_per_step;
+}
+
+/// Bullet's row for the same pyramid, then xeno float's time over Bullet's. Does nothing when
+/// the bench was built without Bullet.
+void bullet_pyramid_row([[maybe_unused]] int base, [[maybe_unused]] int steps, [[maybe_unused]] double xeno_float_ms) {
+#if XENO_HAVE_BULLET
+    const Vec3<float> g = WorldSettings<float>{}.gravity;  // xeno's default, so both pyramids weigh the same
+    const bullet_peer::PyramidRun b = bullet_peer::run_pyramid(base, steps, btVector3(g.x, g.y, g.z));
+    print_pyramid_row(base, "bullet", {b.boxes, {b.ms_per_step, b.contacts_per_step, b.points_per_step}, b.worst_move, b.top_sag}, steps);
+    if (b.missed_steps > 0) std::printf("  (Bullet ran %d of its %d steps with other than one substep)\n", b.missed_steps, steps);
+    std::printf("  xeno float / Bullet: %.2f%s\n", xeno_float_ms / b.ms_per_step, base == 20 ? " (issue goal for the 210 pyramid: <= 0.52)" : "");
+#endif
+}
+
+/// xeno float, Bullet beside it, then xeno double.
+void pyramid_rows(int base, int steps) {
+    const double xeno_float_ms = pyramid_row<float>(base, steps);
+    bullet_pyramid_row(base, steps, xeno_float_ms);
+    pyramid_row<double>(base, steps);
 }
 
 template <class T>
@@ -220,14 +257,13 @@ int main(int argc, char** argv) {
     }
     const int steps = quick ? 60 : 600;  // 10 s at 60 Hz
     std::printf("World::step, one thread, 60 Hz, %d steps each, default settings (soft step, 12 substeps), no sleeping\n", steps);
-    for (int base : {20, 40}) {
-        pyramid_row<float>(base, steps);
-        pyramid_row<double>(base, steps);
-    }
-    if (!quick) {
-        pyramid_row<float>(100, steps);
-        pyramid_row<double>(100, steps);
-    }
+#if XENO_HAVE_BULLET
+    std::printf("Bullet %d.%02d beside xeno float: btDiscreteDynamicsWorld with its defaults (10 solver iterations), one 1/60 s\n"
+                "substep per step, no deactivation; friction 0.6 per body, which Bullet combines to 0.36 per pair (xeno: 0.6)\n",
+                btGetVersion() / 100, btGetVersion() % 100);
+#endif
+    for (int base : {20, 40}) pyramid_rows(base, steps);
+    if (!quick) pyramid_rows(100, steps);
     for (int n : {1000, 4000}) {
         drop_row<float>(n, quick ? 60 : 300);
         drop_row<double>(n, quick ? 60 : 300);
