@@ -43,6 +43,7 @@ struct WideContact {
     std::uint32_t a[W], b[W];        ///< solver bodies (0: static stand-in)
     std::uint32_t row[W];            ///< index into the scalar rows (padding: ~0)
     int max_count;                   ///< points of the fullest lane
+    int min_count;                   ///< points of the emptiest lane that holds a manifold
     V count;                         ///< points per lane
     WideVec3<V> normal, t1, t2;
     V inv_mass_a, inv_mass_b, friction;
@@ -96,15 +97,17 @@ XENO_WIDE_INLINE void scatter(const WideBody<Wide<T, W>>& g, std::vector<SolverB
     }
 }
 
-/// Applies an impulse along the lanes' directions to both bodies where `m` holds:
-/// A gets −(lin × λ) / −(ang_a λ), B gets +(lin × λ) / +(ang_b λ).
+/// Applies an impulse along the lanes' directions to both bodies where `m` holds (every lane
+/// when `masked` is false): A gets −(lin × λ) / −(ang_a λ), B gets +(lin × λ) / +(ang_b λ).
 template <class V>
-XENO_WIDE_INLINE void apply_wide(WideBody<V>& A, WideBody<V>& B, const typename V::Mask& m, const WideVec3<V>& lin, const V& lambda, const V& inv_mass_a,
-                const V& inv_mass_b, const WideVec3<V>& ang_a, const WideVec3<V>& ang_b) {
-    A.v = select(m, A.v - lin * (lambda * inv_mass_a), A.v);
-    A.w = select(m, A.w - ang_a * lambda, A.w);
-    B.v = select(m, B.v + lin * (lambda * inv_mass_b), B.v);
-    B.w = select(m, B.w + ang_b * lambda, B.w);
+XENO_WIDE_INLINE void apply_wide(WideBody<V>& A, WideBody<V>& B, bool masked, const typename V::Mask& m, const WideVec3<V>& lin, const V& lambda,
+                                 const V& inv_mass_a, const V& inv_mass_b, const WideVec3<V>& ang_a, const WideVec3<V>& ang_b) {
+    const WideVec3<V> va = A.v - lin * (lambda * inv_mass_a), wa = A.w - ang_a * lambda;
+    const WideVec3<V> vb = B.v + lin * (lambda * inv_mass_b), wb = B.w + ang_b * lambda;
+    A.v = masked ? select(m, va, A.v) : va;
+    A.w = masked ? select(m, wa, A.w) : wa;
+    B.v = masked ? select(m, vb, B.v) : vb;
+    B.w = masked ? select(m, wb, B.w) : wb;
 }
 
 /// Warm start: last step's impulses applied, point by point, then friction, then twist (the
@@ -115,7 +118,7 @@ void warm_start_wide(const WideContact<T, W>& c, std::vector<SolverBody<T>>& bod
     WideBody<V> A = gather<T, W>(bodies, c.a, false), B = gather<T, W>(bodies, c.b, false);
     for (int i = 0; i < c.max_count; ++i) {
         const WidePoint<V>& p = c.points[i];
-        apply_wide(A, B, V::splat(T(i)) < c.count, c.normal, p.normal_impulse, c.inv_mass_a, c.inv_mass_b, p.ia, p.ib);
+        apply_wide(A, B, i >= c.min_count, V::splat(T(i)) < c.count, c.normal, p.normal_impulse, c.inv_mass_a, c.inv_mass_b, p.ia, p.ib);
     }
     // Padding lanes need no mask: they write to the static stand-in, which scatter skips.
     const WideVec3<V> f = c.t1 * c.friction_1 + c.t2 * c.friction_2;
@@ -139,6 +142,8 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
     V total = zero;
     for (int i = 0; i < c.max_count; ++i) {
         WidePoint<V>& p = c.points[i];
+        // Points every real lane has need no mask (padding lanes are never written back).
+        const bool masked = i >= c.min_count;
         const typename V::Mask active = V::splat(T(i)) < c.count;
         // Current separation from the displacement of both anchors this step.
         const WideVec3<V> d = (B.dp - A.dp) + (rotate(B.dq, p.r_b) - rotate(A.dq, p.r_a));
@@ -158,12 +163,13 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
 
         const V vn = dot(B.v - A.v, c.normal) + dot(B.w, p.rn_b) - dot(A.w, p.rn_a);
         const V delta = zero - p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
-        const V updated = select(active, max(p.normal_impulse + delta, zero), p.normal_impulse);
+        const V clamped = max(p.normal_impulse + delta, zero);
+        const V updated = masked ? select(active, clamped, p.normal_impulse) : clamped;
         const V applied = updated - p.normal_impulse;
         p.normal_impulse = updated;
         p.max_normal_impulse = max(p.max_normal_impulse, updated);
-        apply_wide(A, B, active, c.normal, applied, c.inv_mass_a, c.inv_mass_b, p.ia, p.ib);
-        total = total + select(active, updated, zero);
+        apply_wide(A, B, masked, active, c.normal, applied, c.inv_mass_a, c.inv_mass_b, p.ia, p.ib);
+        total = total + (masked ? select(active, updated, zero) : updated);
     }
 
     // Central friction: a 2-D row at the patch centre, clamped to the Coulomb disc.
@@ -208,6 +214,7 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
     auto put = [l](WideVec3<Wide<T, W>>& dst, const Vec3<T>& v) { dst.x.set(l, v.x), dst.y.set(l, v.y), dst.z.set(l, v.z); };
     c.a[l] = k.a, c.b[l] = k.b, c.row[l] = row;
     c.max_count = std::max(c.max_count, k.count);
+    c.min_count = std::min(c.min_count, k.count);
     c.count.set(l, static_cast<T>(k.count));
     put(c.normal, k.normal), put(c.t1, k.t1), put(c.t2, k.t2);
     c.inv_mass_a.set(l, sa.inv_mass), c.inv_mass_b.set(l, sb.inv_mass), c.friction.set(l, k.friction);
@@ -319,6 +326,7 @@ private:
         WideContact<T, W> c{};
         for (int l = 0; l < W; ++l) c.a[l] = 0, c.b[l] = 0, c.row[l] = ~0u;
         c.max_count = 0;
+        c.min_count = 4;
         return c;
     }
     template <int W>
