@@ -25,6 +25,8 @@ struct BodyIntegration {
     T linear_damping{}, angular_damping{};
     bool gyroscopic = false;     ///< false for isotropic inertia, where ω × Iω = 0
     T max_spin = ScalarTraits<T>::infinity;  ///< rad/s: the spin cap of integrate_position, applied first
+    T max_speed = ScalarTraits<T>::infinity;  ///< m/s: the speed cap of integrate_position
+    bool dynamic = true;         ///< false for kinematic bodies, whose velocity is the user's
 };
 
 template <class T>

@@ -284,6 +284,7 @@ private:
     /// How fast the body can travel this step (its speed within the cap; a velocity whose length
     /// overflows is capped like any other), for boxes and margins that must stay finite.
     T travel_speed(const Body<T>& b) const { return std::min(length(b.linear_velocity_), speed_limit(b)); }
+    detail::BodyIntegration<T> integration_constants(const Body<T>& b, const detail::SolverBody<T>& s, T h) const;
     void update_bounds(T dt);
     void narrow_phase(T dt);
     void wake_touched_islands(T dt);
@@ -314,6 +315,7 @@ private:
     std::vector<detail::SolverBody<T>> solver_bodies_;    ///< slot 0: static stand-in
     std::vector<std::uint32_t> solver_index_;     ///< per slot: index into solver_bodies_ (0: none)
     std::vector<std::uint32_t> solver_slot_;      ///< per solver body: its slot
+    std::vector<detail::BodyIntegration<T>> integration_;  ///< per solver body: the step's constants
     std::vector<detail::ContactConstraint<T>> constraints_;
     detail::WideContactRows<T> wide_rows_;  ///< constraints_ coloured and packed in SIMD lanes
     std::vector<Joint<T>> joints_;
@@ -1042,6 +1044,7 @@ void World<T>::prepare(T dt) {
     // Solver bodies: every awake dynamic or kinematic body; slot 0 stands for static ones.
     solver_bodies_.assign(1, detail::SolverBody<T>{});
     solver_slot_.assign(1, 0);
+    integration_.assign(1, detail::BodyIntegration<T>{});
     std::fill(solver_index_.begin(), solver_index_.end(), 0u);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         const Body<T>& b = bodies_[i];
@@ -1057,6 +1060,7 @@ void World<T>::prepare(T dt) {
         s.inv_inertia = b.type_ == BodyType::dynamic ? b.inverse_inertia_world() : Mat3<T>::zero();
         solver_bodies_.push_back(s);
         solver_slot_.push_back(i);
+        integration_.push_back(integration_constants(b, s, h));
     }
     stats_.awake_bodies = solver_bodies_.size() - 1;
 
@@ -1148,6 +1152,24 @@ void World<T>::prepare(T dt) {
     stats_.overflow_contacts = wide_rows_.overflow_rows();
 }
 
+/// What integrating body `b` (solver state `s`) over substeps of h needs, constant for the step:
+/// read once here rather than from the body every substep.
+template <class T>
+detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, const detail::SolverBody<T>& s, T h) const {
+    detail::BodyIntegration<T> in;
+    in.dynamic = b.type_ == BodyType::dynamic;
+    in.acceleration = settings_.gravity * b.gravity_scale_ + b.force_ * b.inverse_mass_;
+    in.angular_impulse_rate = s.inv_inertia * b.torque_;
+    in.inertia_local = &b.inertia_local_;
+    in.orientation0 = b.orientation_;
+    in.gyroscopic = !b.isotropic_;
+    in.linear_damping = b.linear_damping_;
+    in.angular_damping = b.angular_damping_;
+    in.max_spin = settings_.max_rotation_per_step / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1) / h;
+    in.max_speed = speed_limit(b);
+    return in;
+}
+
 template <class T>
 void World<T>::solve(T dt) {
     const bool soft = settings_.solver == SolverMode::soft_step;
@@ -1156,20 +1178,8 @@ void World<T>::solve(T dt) {
     detail::SolvePass<T> pass{T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
     const T max_rotation = settings_.max_rotation_per_step / static_cast<T>(substeps);
     for (int sub = 0; sub < substeps; ++sub) {
-        for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
-            const Body<T>& b = bodies_[solver_slot_[i]];
-            if (b.type_ != BodyType::dynamic) continue;  // kinematic: velocity is the user's
-            detail::BodyIntegration<T> in;
-            in.acceleration = settings_.gravity * b.gravity_scale_ + b.force_ * b.inverse_mass_;
-            in.angular_impulse_rate = solver_bodies_[i].inv_inertia * b.torque_;
-            in.inertia_local = &b.inertia_local_;
-            in.orientation0 = b.orientation_;
-            in.gyroscopic = !b.isotropic_;
-            in.linear_damping = b.linear_damping_;
-            in.angular_damping = b.angular_damping_;
-            in.max_spin = max_rotation / h;
-            detail::integrate_velocity(solver_bodies_[i], in, h);
-        }
+        for (std::size_t i = 1; i < solver_bodies_.size(); ++i)
+            if (integration_[i].dynamic) detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
         if (settings_.warm_starting) {
             for (const detail::JointConstraint<T>& c : joint_rows_)
                 detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
@@ -1182,11 +1192,8 @@ void World<T>::solve(T dt) {
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
             wide_rows_.solve(solver_bodies_, pass);
         }
-        for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
-            const Body<T>& b = bodies_[solver_slot_[i]];
-            const T max_speed = speed_limit(b);
-            detail::integrate_position(solver_bodies_[i], h, max_speed, max_rotation);
-        }
+        for (std::size_t i = 1; i < solver_bodies_.size(); ++i)
+            detail::integrate_position(solver_bodies_[i], h, integration_[i].max_speed, max_rotation);
         pass.use_bias = false;
         for (int it = 0; it < settings_.relax_iterations; ++it) {
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
