@@ -63,6 +63,28 @@ TEST_CASE_TEMPLATE("SIMD lanes give the portable lanes' bits for every operation
     CHECK(checked > 1000);
 }
 
+TEST_CASE_TEMPLATE("transposed loads and stores put record l, number r in lane l of row r (and back)", T, float, double) {
+    constexpr int W = detail::native_width<T>();
+    for (const int rows : {1, 4, 6, 13}) {
+        T records[W][16];
+        const T* src[W];
+        T out_records[W][16] = {};
+        T* dst[W];
+        for (int l = 0; l < W; ++l) {
+            for (int r = 0; r < 16; ++r) records[l][r] = T(100 * l + r);
+            src[l] = records[l];
+            dst[l] = out_records[l];
+        }
+        Wide<T, W> lanes[16];
+        detail::load_transposed(src, rows, lanes);
+        for (int r = 0; r < rows; ++r)
+            for (int l = 0; l < W; ++l) CHECK(lanes[r].get(l) == records[l][r]);
+        detail::store_transposed(lanes, rows, dst);
+        for (int l = 0; l < W; ++l)
+            for (int r = 0; r < 16; ++r) CHECK(out_records[l][r] == (r < rows ? records[l][r] : T(0)));
+    }
+}
+
 TEST_CASE("colouring: no colour holds two rows of one moving body, every row once, row order kept (brute force)") {
     std::mt19937 rng(11);
     for (int trial = 0; trial < 50; ++trial) {

@@ -20,7 +20,9 @@
 #include "contact_solver.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace xeno {
@@ -63,38 +65,42 @@ struct WideBody {
     WideQuat<V> dq;
 };
 
+/// The solver body's first 13 numbers, v, w, dp and dq in that order, are read and written as
+/// one record (load_transposed): the layout this relies on.
+template <class T>
+constexpr bool solver_body_is_a_record() {
+    return std::is_standard_layout_v<SolverBody<T>> && offsetof(SolverBody<T>, v) == 0 && offsetof(SolverBody<T>, w) == 3 * sizeof(T) &&
+           offsetof(SolverBody<T>, dp) == 6 * sizeof(T) && offsetof(SolverBody<T>, dq) == 9 * sizeof(T) && sizeof(Vec3<T>) == 3 * sizeof(T) &&
+           sizeof(Quat<T>) == 4 * sizeof(T) && offsetof(Quat<T>, w) == 0;
+}
+
 template <class T, int W>
 XENO_WIDE_INLINE WideBody<Wide<T, W>> gather(const std::vector<SolverBody<T>>& bodies, const std::uint32_t (&index)[W], bool displacement) {
+    static_assert(solver_body_is_a_record<T>());
     using V = Wide<T, W>;
-    alignas(64) T buf[13][W];
-    const int rows = displacement ? 13 : 6;
-    for (int l = 0; l < W; ++l) {
-        const SolverBody<T>& s = bodies[index[l]];
-        const T values[13] = {s.v.x, s.v.y, s.v.z, s.w.x, s.w.y, s.w.z, s.dp.x, s.dp.y, s.dp.z, s.dq.w, s.dq.x, s.dq.y, s.dq.z};
-        for (int r = 0; r < rows; ++r) buf[r][l] = values[r];
-    }
+    const T* src[W];
+    for (int l = 0; l < W; ++l) src[l] = reinterpret_cast<const T*>(&bodies[index[l]]);
+    V rows[13];
+    load_transposed(src, displacement ? 13 : 6, rows);
     WideBody<V> g;
-    g.v = {V::load(buf[0]), V::load(buf[1]), V::load(buf[2])};
-    g.w = {V::load(buf[3]), V::load(buf[4]), V::load(buf[5])};
+    g.v = {rows[0], rows[1], rows[2]};
+    g.w = {rows[3], rows[4], rows[5]};
     if (displacement) {
-        g.dp = {V::load(buf[6]), V::load(buf[7]), V::load(buf[8])};
-        g.dq = {V::load(buf[9]), {V::load(buf[10]), V::load(buf[11]), V::load(buf[12])}};
+        g.dp = {rows[6], rows[7], rows[8]};
+        g.dq = {rows[9], {rows[10], rows[11], rows[12]}};
     }
     return g;
 }
 
-/// Writes the lanes' velocities back; the static stand-in (padding and static sides) is skipped.
+/// Writes the lanes' velocities back; the static stand-in (padding and static sides) is written
+/// to a scratch record instead.
 template <class T, int W>
 XENO_WIDE_INLINE void scatter(const WideBody<Wide<T, W>>& g, std::vector<SolverBody<T>>& bodies, const std::uint32_t (&index)[W]) {
-    alignas(64) T buf[6][W];
-    g.v.x.store(buf[0]), g.v.y.store(buf[1]), g.v.z.store(buf[2]);
-    g.w.x.store(buf[3]), g.w.y.store(buf[4]), g.w.z.store(buf[5]);
-    for (int l = 0; l < W; ++l) {
-        if (index[l] == 0) continue;
-        SolverBody<T>& s = bodies[index[l]];
-        s.v = {buf[0][l], buf[1][l], buf[2][l]};
-        s.w = {buf[3][l], buf[4][l], buf[5][l]};
-    }
+    T sink[W][6];
+    T* dst[W];
+    for (int l = 0; l < W; ++l) dst[l] = index[l] == 0 ? sink[l] : reinterpret_cast<T*>(&bodies[index[l]]);
+    const Wide<T, W> rows[6] = {g.v.x, g.v.y, g.v.z, g.w.x, g.w.y, g.w.z};
+    store_transposed(rows, 6, dst);
 }
 
 /// Applies an impulse along the lanes' directions to both bodies where `m` holds (every lane

@@ -219,6 +219,60 @@ struct Wide<double, 4> {
 };
 #endif
 
+/// Transposes W records into lanes: out[r] lane l = src[l][r] for r < rows. Each record is `rows`
+/// numbers in a row (the solver's per-body state); portable version, through a buffer.
+template <class T, int W>
+XENO_WIDE_INLINE void load_transposed(const T* const (&src)[W], int rows, Wide<T, W>* out) {
+    for (int r = 0; r < rows; ++r)
+        for (int l = 0; l < W; ++l) out[r].set(l, src[l][r]);
+}
+
+/// The inverse: dst[l][r] = in[r] lane l for r < rows.
+template <class T, int W>
+XENO_WIDE_INLINE void store_transposed(const Wide<T, W>* in, int rows, T* const (&dst)[W]) {
+    for (int r = 0; r < rows; ++r)
+        for (int l = 0; l < W; ++l) dst[l][r] = in[r].get(l);
+}
+
+#if defined(XENO_SIMD_SSE2)
+// SSE2: four rows at a time by 4 × 4 transposes (two at a time for doubles), the rest lane by lane.
+XENO_WIDE_INLINE void load_transposed(const float* const (&src)[4], int rows, Wide<float, 4>* out) {
+    int r = 0;
+    for (; r + 4 <= rows; r += 4) {
+        __m128 a = _mm_loadu_ps(src[0] + r), b = _mm_loadu_ps(src[1] + r), c = _mm_loadu_ps(src[2] + r), d = _mm_loadu_ps(src[3] + r);
+        _MM_TRANSPOSE4_PS(a, b, c, d);
+        out[r].x = a, out[r + 1].x = b, out[r + 2].x = c, out[r + 3].x = d;
+    }
+    for (; r < rows; ++r) out[r].x = _mm_set_ps(src[3][r], src[2][r], src[1][r], src[0][r]);
+}
+XENO_WIDE_INLINE void store_transposed(const Wide<float, 4>* in, int rows, float* const (&dst)[4]) {
+    int r = 0;
+    for (; r + 4 <= rows; r += 4) {
+        __m128 a = in[r].x, b = in[r + 1].x, c = in[r + 2].x, d = in[r + 3].x;
+        _MM_TRANSPOSE4_PS(a, b, c, d);
+        _mm_storeu_ps(dst[0] + r, a), _mm_storeu_ps(dst[1] + r, b), _mm_storeu_ps(dst[2] + r, c), _mm_storeu_ps(dst[3] + r, d);
+    }
+    for (; r < rows; ++r)
+        for (int l = 0; l < 4; ++l) dst[l][r] = in[r].get(l);
+}
+XENO_WIDE_INLINE void load_transposed(const double* const (&src)[2], int rows, Wide<double, 2>* out) {
+    int r = 0;
+    for (; r + 2 <= rows; r += 2) {
+        const __m128d a = _mm_loadu_pd(src[0] + r), b = _mm_loadu_pd(src[1] + r);
+        out[r].x = _mm_unpacklo_pd(a, b), out[r + 1].x = _mm_unpackhi_pd(a, b);
+    }
+    for (; r < rows; ++r) out[r].x = _mm_set_pd(src[1][r], src[0][r]);
+}
+XENO_WIDE_INLINE void store_transposed(const Wide<double, 2>* in, int rows, double* const (&dst)[2]) {
+    int r = 0;
+    for (; r + 2 <= rows; r += 2) {
+        _mm_storeu_pd(dst[0] + r, _mm_unpacklo_pd(in[r].x, in[r + 1].x));
+        _mm_storeu_pd(dst[1] + r, _mm_unpackhi_pd(in[r].x, in[r + 1].x));
+    }
+    for (; r < rows; ++r) dst[0][r] = in[r].get(0), dst[1][r] = in[r].get(1);
+}
+#endif
+
 /// The solver's lane count for T on this target (see the file comment).
 template <class T>
 constexpr int native_width() {
