@@ -77,7 +77,8 @@ struct SolvePass {
 /// Gauss–Seidel sweep over a face's four points leaves the face short of the target speed
 /// (measured: a flat box bounced to 96 % of e v), and only bouncing rows take part.
 template <class T>
-void apply_restitution(std::vector<ContactConstraint<T>>& constraints, std::vector<SolverBody<T>>& bodies, T threshold) {
+void apply_restitution(std::vector<ContactConstraint<T>>& constraints, std::vector<SolverBody<T>>& bodies, const std::vector<SolverMass<T>>& masses,
+                       T threshold) {
     constexpr int sweeps = 4;
     for (int sweep = 0; sweep < sweeps; ++sweep)
     for (ContactConstraint<T>& c : constraints) {
@@ -94,8 +95,8 @@ void apply_restitution(std::vector<ContactConstraint<T>>& constraints, std::vect
             p.step_impulse += updated - p.normal_impulse;
             p.normal_impulse = updated;
             p.max_normal_impulse = std::max(p.max_normal_impulse, updated);
-            a.apply(p.r_a, -impulse);
-            b.apply(p.r_b, impulse);
+            apply_impulse(a, masses[c.a], p.r_a, -impulse);
+            apply_impulse(b, masses[c.b], p.r_b, impulse);
         }
     }
     bodies[0] = SolverBody<T>{};

@@ -113,6 +113,7 @@ template <class T>
 struct JointConstraint {
     std::uint32_t joint = 0;      ///< index into the world's joints
     std::uint32_t a = 0, b = 0;   ///< solver body indices (0: static stand-in)
+    SolverMass<T> mass_a{}, mass_b{};  ///< the two bodies' inverse masses and inertias, frozen for the step
     Vec3<T> r_a0{}, r_b0{};       ///< anchors at the start of the step (rotated by Δq each substep)
     Vec3<T> delta_center{};       ///< x_B − x_A at the start of the step
     Vec3<T> axis_a0{}, axis_b0{}, ref_a0{}, ref_b0{};  ///< hinge frames at the start of the step
@@ -151,10 +152,10 @@ void warm_start_joint(const Joint<T>& j, const JointConstraint<T>& c, SolverBody
         const Vec3<T> d = (b.dp - a.dp) + c.delta_center + rb - ra;
         linear = normalized_or(d, Vec3<T>::unit_y()) * j.axial_impulse;
     }
-    a.apply(ra, -linear);
-    b.apply(rb, linear);
-    a.w -= a.inv_inertia * angular;
-    b.w += b.inv_inertia * angular;
+    apply_impulse(a, c.mass_a, ra, -linear);
+    apply_impulse(b, c.mass_b, rb, linear);
+    a.w -= c.mass_a.inv_inertia * angular;
+    b.w += c.mass_b.inv_inertia * angular;
 }
 
 /// One pass over a joint's rows; use_bias false in the relax pass. h: the substep. The point
@@ -167,7 +168,7 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
     const T bias_rate = use_bias ? c.softness.bias_rate : T(0);
     const T mass_scale = use_bias ? c.softness.mass_scale : T(1);
     const T impulse_scale = use_bias ? c.softness.impulse_scale : T(0);
-    const Mat3<T> inv_i = a.inv_inertia + b.inv_inertia;
+    const Mat3<T> inv_i = c.mass_a.inv_inertia + c.mass_b.inv_inertia;
 
     if (j.type == JointType::distance) {
         const Vec3<T> d = (b.dp - a.dp) + c.delta_center + rb - ra;
@@ -175,29 +176,29 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
         // (A length that overflows still has a direction: capped_length scales before squaring.)
         const Vec3<T> n = !std::isfinite(len) ? detail::capped_length(d, T(1)) : len > T(0) ? d / len : Vec3<T>::unit_y();
         const Vec3<T> rna = cross(ra, n), rnb = cross(rb, n);
-        const T k = a.inv_mass + b.inv_mass + dot(rna, a.inv_inertia * rna) + dot(rnb, b.inv_inertia * rnb);
+        const T k = c.mass_a.inv_mass + c.mass_b.inv_mass + dot(rna, c.mass_a.inv_inertia * rna) + dot(rnb, c.mass_b.inv_inertia * rnb);
         if (k > T(0)) {
             const T bias = bias_rate > T(0) ? clamp(bias_rate * (len - j.length), -c.max_bias_speed, c.max_bias_speed) : T(0);
             const T cdot = dot(b.velocity_at(rb) - a.velocity_at(ra), n) + bias;
             const T delta = -mass_scale * cdot / k - impulse_scale * j.axial_impulse;
             j.axial_impulse += delta;
-            a.apply(ra, -n * delta);
-            b.apply(rb, n * delta);
+            apply_impulse(a, c.mass_a, ra, -n * delta);
+            apply_impulse(b, c.mass_b, rb, n * delta);
         }
         return;
     }
 
     // The point rows (ball, hinge, fixed), as one 3×3 block.
-    const Mat3<T> k = Mat3<T>::identity() * (a.inv_mass + b.inv_mass) + detail::point_mass_term(ra, a.inv_inertia) +
-                      detail::point_mass_term(rb, b.inv_inertia);
+    const Mat3<T> k = Mat3<T>::identity() * (c.mass_a.inv_mass + c.mass_b.inv_mass) + detail::point_mass_term(ra, c.mass_a.inv_inertia) +
+                      detail::point_mass_term(rb, c.mass_b.inv_inertia);
     if (const std::optional<Mat3<T>> k_inv = try_inverse(k)) {
         const Vec3<T> separation = (b.dp - a.dp) + c.delta_center + rb - ra;
         const Vec3<T> bias = bias_rate > T(0) ? detail::capped_length(separation * bias_rate, c.max_bias_speed) : Vec3<T>::zero();
         const Vec3<T> cdot = b.velocity_at(rb) - a.velocity_at(ra) + bias;
         const Vec3<T> impulse = (*k_inv * cdot) * (-mass_scale) - j.linear_impulse * impulse_scale;
         j.linear_impulse += impulse;
-        a.apply(ra, -impulse);
-        b.apply(rb, impulse);
+        apply_impulse(a, c.mass_a, ra, -impulse);
+        apply_impulse(b, c.mass_b, rb, impulse);
     }
 
     if (j.type == JointType::fixed) {
@@ -209,8 +210,8 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
             const Vec3<T> cdot = (b.w - a.w) + error * bias_rate;
             const Vec3<T> impulse = (*k_inv * cdot) * (-mass_scale) - j.angular_impulse * impulse_scale;
             j.angular_impulse += impulse;
-            a.w -= a.inv_inertia * impulse;
-            b.w += b.inv_inertia * impulse;
+            a.w -= c.mass_a.inv_inertia * impulse;
+            b.w += c.mass_b.inv_inertia * impulse;
         }
         return;
     }
@@ -231,8 +232,8 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
         const T l2 = -mass_scale * (k11 * c2 - k12 * c1) / det - impulse_scale * p2;
         const Vec3<T> impulse = b1 * l1 + b2 * l2;
         j.angular_impulse = b1 * (p1 + l1) + b2 * (p2 + l2);
-        a.w -= a.inv_inertia * impulse;
-        b.w += b.inv_inertia * impulse;
+        a.w -= c.mass_a.inv_inertia * impulse;
+        b.w += c.mass_b.inv_inertia * impulse;
     }
     const T kk = dot(axis, inv_i * axis);
     const T axial_mass = kk > T(0) ? T(1) / kk : T(0);
@@ -243,8 +244,8 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
         const T updated = clamp(j.motor_impulse - axial_mass * cdot, -limit, limit);
         const Vec3<T> impulse = axis * (updated - j.motor_impulse);
         j.motor_impulse = updated;
-        a.w -= a.inv_inertia * impulse;
-        b.w += b.inv_inertia * impulse;
+        a.w -= c.mass_a.inv_inertia * impulse;
+        b.w += c.mass_b.inv_inertia * impulse;
     }
     // Limit: a one-sided row at whichever end is nearer (speculative above it, as contacts).
     if (j.enable_limit) {
@@ -268,8 +269,8 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
         const T updated = std::max(current - axial_mass * ms * (cdot + bias) - is * current, T(0));
         const Vec3<T> impulse = axis * (sign * (updated - current));
         j.axial_impulse = sign * updated;
-        a.w -= a.inv_inertia * impulse;
-        b.w += b.inv_inertia * impulse;
+        a.w -= c.mass_a.inv_inertia * impulse;
+        b.w += c.mass_b.inv_inertia * impulse;
     }
 }
 

@@ -15,24 +15,37 @@
 namespace xeno {
 namespace detail {
 
-/// Hot per-body solver state, world frame.
+/// Hot per-body solver state, world frame: what every substep reads and writes. 13 numbers (52
+/// bytes in float, 104 in double) so that four bodies' states sit in about three cache lines and
+/// a group of SIMD lanes gathers them with a few transposes (wide_contact_solver.hpp, which also
+/// relies on this order); the masses, read only when rows are prepared, live in SolverMass.
 template <class T>
 struct SolverBody {
     Vec3<T> v{};                             ///< m/s
     Vec3<T> w{};                             ///< rad/s
     Vec3<T> dp{};                            ///< m, position change since the step began
     Quat<T> dq = Quat<T>::identity();        ///< rotation since the step began (world)
-    T inv_mass{};                            ///< 1/kg, 0 for static and kinematic
-    Mat3<T> inv_inertia{};                   ///< world, frozen for the step
 
-    /// Applies an impulse P (N·s) at offset r from the centre of mass: Δv = P/m, Δω = I⁻¹ (r × P).
-    void apply(const Vec3<T>& r, const Vec3<T>& p) {
-        v += p * inv_mass;
-        w += inv_inertia * cross(r, p);
-    }
     /// Velocity of the material point at offset r.
     Vec3<T> velocity_at(const Vec3<T>& r) const { return v + cross(w, r); }
 };
+static_assert(sizeof(SolverBody<float>) == 13 * sizeof(float), "the hot state is 13 packed numbers");
+static_assert(sizeof(SolverBody<double>) == 13 * sizeof(double), "the hot state is 13 packed numbers");
+
+/// A solver body's inverse mass and world inverse inertia, frozen for the step (Box3D). Joint rows
+/// carry a copy of their two bodies'; contact rows fold them into their Jacobians.
+template <class T>
+struct SolverMass {
+    T inv_mass{};                            ///< 1/kg, 0 for static and kinematic
+    Mat3<T> inv_inertia{};                   ///< world
+};
+
+/// Applies an impulse P (N·s) at offset r from the centre of mass: Δv = P/m, Δω = I⁻¹ (r × P).
+template <class T>
+void apply_impulse(SolverBody<T>& body, const SolverMass<T>& mass, const Vec3<T>& r, const Vec3<T>& p) {
+    body.v += p * mass.inv_mass;
+    body.w += mass.inv_inertia * cross(r, p);
+}
 
 /// Soft-constraint coefficients for a spring–damper of frequency `hertz` and damping ratio zeta
 /// integrated implicitly over h (Catto, "Soft Constraints", GDC 2011; Box2D's b2MakeSoft). With

@@ -214,9 +214,9 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
 
 /// Fills lane `l` of a group from the scalar row and the bodies' frozen masses.
 template <class T, int W>
-void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactConstraint<T>& k, const std::vector<SolverBody<T>>& bodies) {
-    const SolverBody<T>& sa = bodies[k.a];
-    const SolverBody<T>& sb = bodies[k.b];
+void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactConstraint<T>& k, const std::vector<SolverMass<T>>& masses) {
+    const SolverMass<T>& sa = masses[k.a];
+    const SolverMass<T>& sb = masses[k.b];
     auto put = [l](WideVec3<Wide<T, W>>& dst, const Vec3<T>& v) { dst.x.set(l, v.x), dst.y.set(l, v.y), dst.z.set(l, v.z); };
     c.a[l] = k.a, c.b[l] = k.b, c.row[l] = row;
     c.max_count = std::max(c.max_count, k.count);
@@ -266,9 +266,9 @@ public:
     using Group = WideContact<T, width>;
     using Single = WideContact<T, 1>;
 
-    /// Colours and packs `rows` (their bodies' masses frozen in `bodies`).
-    void build(const std::vector<ContactConstraint<T>>& rows, const std::vector<SolverBody<T>>& bodies) {
-        colouring_.build(rows.size(), bodies.size(), [&](std::size_t i) { return rows[i].a; }, [&](std::size_t i) { return rows[i].b; });
+    /// Colours and packs `rows` (their bodies' masses frozen in `masses`).
+    void build(const std::vector<ContactConstraint<T>>& rows, const std::vector<SolverMass<T>>& masses) {
+        colouring_.build(rows.size(), masses.size(), [&](std::size_t i) { return rows[i].a; }, [&](std::size_t i) { return rows[i].b; });
         groups_.clear();
         colour_groups_.assign(1, 0u);
         for (int colour = 0; colour < ConstraintColouring::colours; ++colour) {
@@ -278,7 +278,7 @@ public:
                 groups_.push_back(empty<width>());
                 for (int l = 0; l < width && i + static_cast<std::uint32_t>(l) < end; ++l) {
                     const std::uint32_t row = colouring_.order[i + static_cast<std::uint32_t>(l)];
-                    pack_lane(groups_.back(), l, row, rows[row], bodies);
+                    pack_lane(groups_.back(), l, row, rows[row], masses);
                 }
             }
             colour_groups_.push_back(static_cast<std::uint32_t>(groups_.size()));
@@ -286,7 +286,7 @@ public:
         overflow_.clear();
         for (const std::uint32_t row : colouring_.overflow) {
             overflow_.push_back(empty<1>());
-            pack_lane(overflow_.back(), 0, row, rows[row], bodies);
+            pack_lane(overflow_.back(), 0, row, rows[row], masses);
         }
     }
 

@@ -284,7 +284,7 @@ private:
     /// How fast the body can travel this step (its speed within the cap; a velocity whose length
     /// overflows is capped like any other), for boxes and margins that must stay finite.
     T travel_speed(const Body<T>& b) const { return std::min(length(b.linear_velocity_), speed_limit(b)); }
-    detail::BodyIntegration<T> integration_constants(const Body<T>& b, const detail::SolverBody<T>& s, T h) const;
+    detail::BodyIntegration<T> integration_constants(const Body<T>& b, const detail::SolverMass<T>& s, T h) const;
     void update_bounds(T dt);
     void narrow_phase(T dt);
     void wake_touched_islands(T dt);
@@ -313,6 +313,7 @@ private:
     std::vector<ProxyPair> pairs_;
     std::vector<Contact<T>> contacts_;            ///< sorted by (a.index, b.index)
     std::vector<detail::SolverBody<T>> solver_bodies_;    ///< slot 0: static stand-in
+    std::vector<detail::SolverMass<T>> solver_masses_;    ///< per solver body
     std::vector<std::uint32_t> solver_index_;     ///< per slot: index into solver_bodies_ (0: none)
     std::vector<std::uint32_t> solver_slot_;      ///< per solver body: its slot
     std::vector<detail::BodyIntegration<T>> integration_;  ///< per solver body: the step's constants
@@ -564,6 +565,8 @@ void World<T>::prepare_joints(T h) {
         c.a = solver_index_[j.a.index];
         c.b = solver_index_[j.b.index];
         if (c.a == 0 && c.b == 0) continue;  // both asleep or static
+        c.mass_a = solver_masses_[c.a];
+        c.mass_b = solver_masses_[c.b];
         const Body<T>& a = bodies_[j.a.index];
         const Body<T>& b = bodies_[j.b.index];
         c.r_a0 = rotate(a.orientation_, j.local_anchor_a);
@@ -1043,6 +1046,7 @@ void World<T>::prepare(T dt) {
     const T h = dt / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
     // Solver bodies: every awake dynamic or kinematic body; slot 0 stands for static ones.
     solver_bodies_.assign(1, detail::SolverBody<T>{});
+    solver_masses_.assign(1, detail::SolverMass<T>{});
     solver_slot_.assign(1, 0);
     integration_.assign(1, detail::BodyIntegration<T>{});
     std::fill(solver_index_.begin(), solver_index_.end(), 0u);
@@ -1056,11 +1060,13 @@ void World<T>::prepare(T dt) {
         // (found by the world fuzzer).
         s.v = detail::capped_length(b.linear_velocity_, speed_limit(b));
         s.w = detail::capped_length(b.angular_velocity_, settings_.max_rotation_per_step / dt);
-        s.inv_mass = b.inverse_mass_;
-        s.inv_inertia = b.type_ == BodyType::dynamic ? b.inverse_inertia_world() : Mat3<T>::zero();
+        detail::SolverMass<T> m;
+        m.inv_mass = b.inverse_mass_;
+        m.inv_inertia = b.type_ == BodyType::dynamic ? b.inverse_inertia_world() : Mat3<T>::zero();
         solver_bodies_.push_back(s);
+        solver_masses_.push_back(m);
         solver_slot_.push_back(i);
-        integration_.push_back(integration_constants(b, s, h));
+        integration_.push_back(integration_constants(b, m, h));
     }
     stats_.awake_bodies = solver_bodies_.size() - 1;
 
@@ -1086,8 +1092,10 @@ void World<T>::prepare(T dt) {
         // A sleeper left asleep by wake_touched_islands cannot be reached this step; solving
         // against it as a static stand-in would stop the mover dead (issue 12), so skip the row.
         if ((c.a == 0 && a.type_ == BodyType::dynamic) || (c.b == 0 && b.type_ == BodyType::dynamic)) continue;
-        const detail::SolverBody<T>& sa = solver_bodies_[c.a];
-        const detail::SolverBody<T>& sb = solver_bodies_[c.b];
+        const detail::SolverMass<T>& sa = solver_masses_[c.a];
+        const detail::SolverMass<T>& sb = solver_masses_[c.b];
+        const detail::SolverBody<T>& va = solver_bodies_[c.a];
+        const detail::SolverBody<T>& vb = solver_bodies_[c.b];
         c.manifold = m;
         c.normal = contact.manifold.normal;
         c.t1 = any_perpendicular(c.normal);
@@ -1114,7 +1122,7 @@ void World<T>::prepare(T dt) {
             p.normal_mass = k > T(0) ? T(1) / k : T(0);
             p.normal_impulse = settings_.warm_starting ? cp.normal_impulse : T(0);
             p.max_normal_impulse = T(0);
-            p.relative_velocity = dot(sb.velocity_at(p.r_b) - sa.velocity_at(p.r_a), c.normal);
+            p.relative_velocity = dot(vb.velocity_at(p.r_b) - va.velocity_at(p.r_a), c.normal);
         }
         centre /= static_cast<T>(c.count);
         c.rc_a = centre - xa;
@@ -1147,7 +1155,7 @@ void World<T>::prepare(T dt) {
         constraints_.push_back(c);
         stats_.contact_points += static_cast<std::size_t>(c.count);
     }
-    wide_rows_.build(constraints_, solver_bodies_);
+    wide_rows_.build(constraints_, solver_masses_);
     stats_.colours = wide_rows_.colours_used();
     stats_.overflow_contacts = wide_rows_.overflow_rows();
 }
@@ -1155,7 +1163,7 @@ void World<T>::prepare(T dt) {
 /// What integrating body `b` (solver state `s`) over substeps of h needs, constant for the step:
 /// read once here rather than from the body every substep.
 template <class T>
-detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, const detail::SolverBody<T>& s, T h) const {
+detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, const detail::SolverMass<T>& s, T h) const {
     detail::BodyIntegration<T> in;
     in.dynamic = b.type_ == BodyType::dynamic;
     in.acceleration = settings_.gravity * b.gravity_scale_ + b.force_ * b.inverse_mass_;
@@ -1205,7 +1213,7 @@ void World<T>::solve(T dt) {
         wide_rows_.accumulate_step_impulses();
     }
     wide_rows_.unpack(constraints_);
-    detail::apply_restitution(constraints_, solver_bodies_, settings_.restitution_threshold);
+    detail::apply_restitution(constraints_, solver_bodies_, solver_masses_, settings_.restitution_threshold);
 }
 
 template <class T>
