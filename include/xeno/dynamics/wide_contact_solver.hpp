@@ -145,15 +145,18 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
     const V zero = V::splat(T(0)), one = V::splat(T(1)), inv_h = V::splat(pass.inv_h);
     const V max_push = V::splat(pass.max_push_out_speed);
     WideBody<V> A = gather<T, W>(bodies, c.a, true), B = gather<T, W>(bodies, c.b, true);
+    // The current separation of a point is s0 + n · (Δx_B + R(Δq_B) r_B − Δx_A − R(Δq_A) r_A)
+    // (contact_solver.hpp). n is the manifold's, so n · R(Δq) r = (R(Δq)ᵀ n) · r: two rotations
+    // per manifold instead of two per point.
+    const V moved = dot(B.dp - A.dp, c.normal);
+    const WideVec3<V> n_b = rotate(conjugate(B.dq), c.normal), n_a = rotate(conjugate(A.dq), c.normal);
     V total = zero;
     for (int i = 0; i < c.max_count; ++i) {
         WidePoint<V>& p = c.points[i];
         // Points every real lane has need no mask (padding lanes are never written back).
         const bool masked = i >= c.min_count;
         const typename V::Mask active = V::splat(T(i)) < c.count;
-        // Current separation from the displacement of both anchors this step.
-        const WideVec3<V> d = (B.dp - A.dp) + (rotate(B.dq, p.r_b) - rotate(A.dq, p.r_a));
-        const V s = dot(d, c.normal) + p.adjusted_separation;
+        const V s = moved + (dot(n_b, p.r_b) - dot(n_a, p.r_a)) + p.adjusted_separation;
         V bias = zero, mass_scale = one, impulse_scale = zero;
         if (pass.use_bias && pass.mode == SolverMode::soft_step) {
             bias = max(c.bias_rate * s, zero - max_push);

@@ -4,7 +4,7 @@
 // W numbers side by side for the wide contact solver (docs/solver.md, "Wide rows"): one lane per
 // contact manifold. The width comes from the compiler's predefined macros, never from a flag the
 // library forces: AVX → 8 floats / 4 doubles, SSE2 (every x86-64) → 4 / 2, anything else (or
-// XENO_NO_SIMD) → the portable lanes below, 4 / 2 plain numbers in a loop.
+// XENO_NO_SIMD) → one portable lane, plain scalar code (Wide<T, 1> below).
 //
 // Every operation is one IEEE operation per lane, the same in every width: + − × ÷ and sqrt are
 // correctly rounded, and min/max follow the SSE rule (max(a, b) = a > b ? a : b, so the second
@@ -278,8 +278,10 @@ template <class T>
 constexpr int native_width() {
 #if defined(XENO_SIMD_AVX)
     return 32 / static_cast<int>(sizeof(T));
-#else
+#elif defined(XENO_SIMD_SSE2)
     return 16 / static_cast<int>(sizeof(T));
+#else
+    return 1;  // plain scalar code: measured faster than 4 portable lanes, which compilers do not vectorise well
 #endif
 }
 
@@ -305,6 +307,13 @@ struct WideQuat {
     V w;
     WideVec3<V> v;
 };
+
+/// The conjugate, the inverse rotation of a unit quaternion.
+template <class V>
+XENO_WIDE_INLINE WideQuat<V> conjugate(const WideQuat<V>& q) {
+    const V zero = V::splat(0);
+    return {q.w, {zero - q.v.x, zero - q.v.y, zero - q.v.z}};
+}
 
 /// rotate(q, r) of quat.hpp, lane by lane, in the same operations: r + w t + u × t, t = 2 u × r.
 template <class V>
