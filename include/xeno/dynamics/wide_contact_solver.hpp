@@ -273,7 +273,6 @@ public:
     void build(const std::vector<ContactConstraint<T>>& rows, const std::vector<SolverMass<T>>& masses) {
         colouring_.build(rows.size(), masses.size(), [&](std::size_t i) { return rows[i].a; }, [&](std::size_t i) { return rows[i].b; });
         groups_.clear();
-        colour_groups_.assign(1, 0u);
         for (int colour = 0; colour < ConstraintColouring::colours; ++colour) {
             const std::uint32_t begin = colouring_.colour_begin[static_cast<std::size_t>(colour)];
             const std::uint32_t end = colouring_.colour_begin[static_cast<std::size_t>(colour) + 1];
@@ -284,7 +283,6 @@ public:
                     pack_lane(groups_.back(), l, row, rows[row], masses);
                 }
             }
-            colour_groups_.push_back(static_cast<std::uint32_t>(groups_.size()));
         }
         overflow_.clear();
         for (const std::uint32_t row : colouring_.overflow) {
@@ -322,12 +320,6 @@ public:
         for (int c = 0; c < ConstraintColouring::colours; ++c) used += colouring_.colour_size(c) > 0 ? 1 : 0;
         return used;
     }
-    const ConstraintColouring& colouring() const { return colouring_; }
-    std::size_t bytes() const {
-        return groups_.capacity() * sizeof(Group) + overflow_.capacity() * sizeof(Single) +
-               (colouring_.order.capacity() + colouring_.overflow.capacity() + colouring_.used_.capacity()) * sizeof(std::uint32_t) +
-               colouring_.colour_of_.capacity();
-    }
 
 private:
     template <int W>
@@ -345,7 +337,6 @@ private:
 
     ConstraintColouring colouring_;
     std::vector<Group> groups_;
-    std::vector<std::uint32_t> colour_groups_;  ///< per colour, the first group (colours + 1)
     std::vector<Single> overflow_;
 };
 

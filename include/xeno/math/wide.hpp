@@ -96,11 +96,6 @@ struct Wide {
         for (int i = 0; i < W; ++i) r.lane[i] = m.lane[i] ? a.lane[i] : b.lane[i];
         return r;
     }
-    friend bool any(const Mask& m) {
-        bool r = false;
-        for (int i = 0; i < W; ++i) r = r || m.lane[i];
-        return r;
-    }
 };
 
 #if defined(XENO_SIMD_SSE2)
@@ -129,7 +124,6 @@ struct Wide<float, 4> {
     friend Mask operator>(Wide a, Wide b) { return {_mm_cmpgt_ps(a.x, b.x)}; }
     friend Mask operator<(Wide a, Wide b) { return {_mm_cmplt_ps(a.x, b.x)}; }
     friend Wide select(Mask m, Wide a, Wide b) { return {_mm_or_ps(_mm_and_ps(m.x, a.x), _mm_andnot_ps(m.x, b.x))}; }
-    friend bool any(Mask m) { return _mm_movemask_ps(m.x) != 0; }
 };
 
 /// Two doubles in an SSE2 register.
@@ -157,7 +151,6 @@ struct Wide<double, 2> {
     friend Mask operator>(Wide a, Wide b) { return {_mm_cmpgt_pd(a.x, b.x)}; }
     friend Mask operator<(Wide a, Wide b) { return {_mm_cmplt_pd(a.x, b.x)}; }
     friend Wide select(Mask m, Wide a, Wide b) { return {_mm_or_pd(_mm_and_pd(m.x, a.x), _mm_andnot_pd(m.x, b.x))}; }
-    friend bool any(Mask m) { return _mm_movemask_pd(m.x) != 0; }
 };
 #endif
 
@@ -187,7 +180,6 @@ struct Wide<float, 8> {
     friend Mask operator>(Wide a, Wide b) { return {_mm256_cmp_ps(a.x, b.x, _CMP_GT_OQ)}; }
     friend Mask operator<(Wide a, Wide b) { return {_mm256_cmp_ps(a.x, b.x, _CMP_LT_OQ)}; }
     friend Wide select(Mask m, Wide a, Wide b) { return {_mm256_blendv_ps(b.x, a.x, m.x)}; }
-    friend bool any(Mask m) { return _mm256_movemask_ps(m.x) != 0; }
 };
 
 /// Four doubles in an AVX register.
@@ -215,7 +207,6 @@ struct Wide<double, 4> {
     friend Mask operator>(Wide a, Wide b) { return {_mm256_cmp_pd(a.x, b.x, _CMP_GT_OQ)}; }
     friend Mask operator<(Wide a, Wide b) { return {_mm256_cmp_pd(a.x, b.x, _CMP_LT_OQ)}; }
     friend Wide select(Mask m, Wide a, Wide b) { return {_mm256_blendv_pd(b.x, a.x, m.x)}; }
-    friend bool any(Mask m) { return _mm256_movemask_pd(m.x) != 0; }
 };
 #endif
 
