@@ -18,13 +18,12 @@ namespace xeno {
 namespace detail {
 
 /// The rows of one step sorted by colour.
-struct ConstraintColouring {
+class ConstraintColouring {
+public:
     static constexpr int colours = 24;        ///< Box2D v3 uses 24; a box in a pile needs about 8
     std::vector<std::uint32_t> order;         ///< row indices, colour by colour, row order inside
     std::vector<std::uint32_t> colour_begin;  ///< colours + 1 offsets into order
     std::vector<std::uint32_t> overflow;      ///< rows no colour could take, in row order
-    std::vector<std::uint32_t> used_;         ///< scratch: per solver body, a bit per colour taken
-    std::vector<std::uint8_t> colour_of_;     ///< scratch: per row, its colour (colours: overflow)
 
     /// Colours `rows` rows whose bodies are body_a(i), body_b(i) (0: static) among `bodies`.
     template <class BodyA, class BodyB>
@@ -57,6 +56,10 @@ struct ConstraintColouring {
     std::size_t colour_size(int c) const {
         return colour_begin[static_cast<std::size_t>(c) + 1] - colour_begin[static_cast<std::size_t>(c)];
     }
+
+private:
+    std::vector<std::uint32_t> used_;         ///< scratch: per solver body, a bit per colour taken
+    std::vector<std::uint8_t> colour_of_;     ///< scratch: per row, its colour (colours: overflow)
 };
 
 }  // namespace detail
