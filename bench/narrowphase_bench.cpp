@@ -1,9 +1,9 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// Per-pair cost of the narrow phase: box–box, 32-vertex hull pairs, capsule–hull and the pairs
+// Per-pair cost of the narrow phase: box–box, 32-vertex hull pairs, capsule–hull, the pairs
 // answered in closed form (sphere–sphere, sphere–capsule, capsule–capsule, sphere–box,
-// capsule–box), overlapping and separated (bounding spheres overlap, shapes do not: what a broad
+// capsule–box) and curved pairs left to MPR (cylinder–cone, capsule–cone, cylinder–hull), overlapping and separated (bounding spheres overlap, shapes do not: what a broad
 // phase lets through), float and double. Columns: the MPR path (mpr_intersect, mpr_penetration:
 // what intersect() and collide() ran for every pair but box–box before the closed forms), the
 // public intersect() and collide(), and the world's manifold. libccd's MPR (ccdMPRIntersect / ccdMPRPenetration, Debian's
@@ -156,7 +156,7 @@ Row time_xeno(const std::string& pair, const std::string& set, const SA& a, cons
         for (int i = 0; i < kPairs; ++i) sink = sink + collide(shape_a, poses.a[i], shape_b, poses.b[i]).hit;
     });
     r.manifold_ns = ns_per_pair([&] {
-        for (int i = 0; i < kPairs; ++i) sink = sink + generate_contacts(shape_a, poses.a[i], shape_b, poses.b[i], T(0)).count;
+        for (int i = 0; i < kPairs; ++i) sink = sink + generate_contacts(shape_a, poses.a[i], shape_b, poses.b[i], T(0), T(0.005)).count;  // the world's default linear_slop
     });
     return r;
 }
@@ -195,6 +195,8 @@ struct Shapes {
     ConvexPolyhedron<T> hull = make_regular_prism(16, T(0.5), T(0.4));  // 32 vertices
     Sphere<T> sphere{T(0.5)};
     Capsule<T> capsule{T(0.25), T(0.5)};
+    Cylinder<T> cylinder{T(0.4), T(0.5)};
+    Cone<T> cone{T(0.5), T(1)};
 };
 
 // Accuracy against the exact minimum depth (separating axes) on the overlapping poses.
@@ -252,6 +254,10 @@ TEST_CASE("narrow phase cost per pair, xeno against libccd in one run", "[summar
     both("sphere-capsule", d.sphere, d.capsule, f.sphere, f.capsule, 6);
     both("capsule-capsule", d.capsule, d.capsule, f.capsule, f.capsule, 7);
     both("capsule-box", d.capsule, d.box, f.capsule, f.box, 8);
+    // Curved pairs still on MPR: collide() adds the least-depth expansion (epa.hpp) to MPR.
+    both("cylinder-cone", d.cylinder, d.cone, f.cylinder, f.cone, 9);
+    both("capsule-cone", d.capsule, d.cone, f.capsule, f.cone, 10);
+    both("cylinder-hull32", d.cylinder, d.hull, f.cylinder, f.hull, 11);
 
     std::printf("\nNarrow phase, ns per pair (best of 7 sweeps over %d random poses; libccd is double only)\n", kPairs);
     std::printf("%-15s %-9s %-7s %13s %15s %11s %9s %9s | %14s %16s | %s\n", "pair", "set", "scalar", "mpr_intersect",
@@ -267,7 +273,7 @@ TEST_CASE("narrow phase cost per pair, xeno against libccd in one run", "[summar
     std::printf("\n");
     accuracy("box-box", d.box, d.box, 1);
     accuracy("hull32-hull32", d.hull, d.hull, 2);
-    CHECK(rows.size() == 32);
+    CHECK(rows.size() == 44);
 }
 
 TEMPLATE_TEST_CASE("narrow phase queries", "[bench]", float, double) {

@@ -25,7 +25,8 @@
     EXTERN template xeno::Penetration<T> xeno::collide<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,                  \
                                                           const xeno::Shape<T>&, const xeno::Transform<T>&);                 \
     EXTERN template xeno::ContactManifold<T> xeno::generate_contacts<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,    \
-                                                                        const xeno::Shape<T>&, const xeno::Transform<T>&, T); \
+                                                                        const xeno::Shape<T>&, const xeno::Transform<T>&, T,  \
+                                                                        T);                                                  \
     EXTERN template std::optional<xeno::RayHit<T>> xeno::raycast<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,        \
                                                                     const xeno::Ray<T>&);                                    \
     EXTERN template xeno::ConvexHull<T> xeno::make_convex_hull<T>(const std::vector<xeno::Vec3<T>>&);                        \

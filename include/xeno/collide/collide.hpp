@@ -8,10 +8,12 @@
 //   intersect()          the boolean MPR test, stopping at the first portal that holds the origin
 //                        (two boxes: the separating-axis test of box_box.hpp);
 //   collide()            MPR penetration (for two boxes: the closed-form separating-axis test of
-//                        box_box.hpp, exact and cheaper), then normal refinement: MPR's normal is where the
-//                        centre line leaves A ⊖ B, not the direction of least penetration, and for a
-//                        resting face it is slightly tilted (docs/collision.md, "Normal
-//                        refinement"). The supporting faces of both shapes along that normal are
+//                        box_box.hpp, exact and cheaper). MPR's normal is where the centre line
+//                        leaves A ⊖ B, not the direction of least penetration: the least-depth
+//                        expansion (epa.hpp) brings the depth within 1 % of the least one
+//                        (docs/collision.md, "Least depth"), then normal refinement snaps a
+//                        resting contact to a face (docs/collision.md, "Normal refinement"). The
+//                        supporting faces of both shapes along that normal are
 //                        tried as axes (one support call each) and the axis with the smallest depth
 //                        wins, faces preferred within a small slack, so a resting contact gets the
 //                        exact face normal;
@@ -22,9 +24,13 @@
 #include "../shape/shape.hpp"
 #include "box_box.hpp"
 #include "contact_points.hpp"
+#include "epa.hpp"
 #include "face_clip.hpp"
 #include "mpr.hpp"
 #include "round_pairs.hpp"
+
+#include <tuple>
+#include <utility>
 
 namespace xeno {
 
@@ -65,9 +71,12 @@ void refine_normal(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_
 /// (contact_points.hpp: each on its own body's surface where the support features overlap);
 /// otherwise at the centre line's exit, the cheaper fallback build_manifold needs for point
 /// features (a template flag, so generate_contacts does not instantiate the contract's code).
+/// The least-depth expansion runs when MPR's overlap exceeds `expand_above` (metres; by default
+/// always).
 template <bool OnSurfaces = false, class A, class B>
 bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scalar_type>& n, typename A::scalar_type& h,
-                     Vec3<typename A::scalar_type>& point_a, Vec3<typename A::scalar_type>& point_b) {
+                     Vec3<typename A::scalar_type>& point_a, Vec3<typename A::scalar_type>& point_b,
+                     typename A::scalar_type expand_above = -ScalarTraits<typename A::scalar_type>::infinity) {
     using T = typename A::scalar_type;
     if constexpr (is_round_pair<A, B>) {
         // Spheres and capsules, with each other or a box: exact in closed form (round_pairs.hpp).
@@ -77,10 +86,13 @@ bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scala
         // Two boxes: the exact separating axis in closed form is cheaper than MPR and exact.
         return box_box_axis<OnSurfaces>(md, n, h, point_a, point_b) && h > -md.margin();
     }
-    const Penetration<T> p = mpr(md, false);
+    Vec3<T> simplex[4];
+    const Penetration<T> p = mpr(md, false, simplex);
     if (!p.hit) return false;
     n = p.normal;
-    h = p.depth - md.margin();
+    T support_distance = p.depth;  // of D, margin included
+    if (support_distance - md.margin() > expand_above) expand_to_least_depth(md, simplex, n, support_distance);
+    h = support_distance - md.margin();
     refine_normal(md, n, h);
     if (!(h > -md.margin())) return false;
     if constexpr (OnSurfaces) {
@@ -98,6 +110,51 @@ bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scala
     return true;
 }
 
+/// Pairs that go through MPR (not closed-form: round pairs, two boxes).
+template <class A, class B>
+constexpr bool answered_by_mpr = !is_round_pair<A, B> && !(std::is_same_v<A, Box<typename A::scalar_type>> &&
+                                                            std::is_same_v<B, Box<typename A::scalar_type>>);
+
+/// Whether collide() should run an MPR pair as (B, A) and flip the answer: MPR and the least-depth
+/// expansion stop within tolerances along paths that depend on the order, so a pair that has two
+/// nearly equal directions of least depth could otherwise get a different one each way round.
+/// One canonical order (by shape kind, then pose, then size; ties keep the given order) makes
+/// collide(A, B) and collide(B, A) agree exactly.
+template <class T>
+bool mpr_order_swapped(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
+    const auto key = [](const Shape<T>& s, const Transform<T>& p) {
+        return std::make_tuple(s.index(), p.position.x, p.position.y, p.position.z, p.orientation.w, p.orientation.x,
+                               p.orientation.y, p.orientation.z, bounding_radius(s));
+    };
+    return key(b, pose_b) < key(a, pose_a);
+}
+
+/// collide() for one concrete pair in the given order, world frame.
+template <class A, class B>
+Penetration<typename A::scalar_type> collide_pair(const A& a, const Transform<typename A::scalar_type>& pose_a, const B& b,
+                                                  const Transform<typename A::scalar_type>& pose_b) {
+    using T = typename A::scalar_type;
+    const MinkowskiDifference<A, B> md(a, pose_a, b, pose_b);
+    Penetration<T> out;
+    Vec3<T> n, pa, pb;
+    T h;
+    if (!refined_contact<true>(md, n, h, pa, pb) || !(h > T(0))) return out;
+    out.hit = true;
+    out.normal = pose_a.apply_direction(n);
+    out.depth = h;
+    out.point_a = pose_a.apply(pa);
+    out.point_b = pose_a.apply(pb);
+    return out;
+}
+
+/// The same contact seen from the other body.
+template <class T>
+Penetration<T> flipped(Penetration<T> p) {
+    p.normal = -p.normal;
+    std::swap(p.point_a, p.point_b);
+    return p;
+}
+
 }  // namespace detail
 
 /// True when the shapes overlap (touching is not overlapping). Poses must be finite (InvalidArgument).
@@ -105,6 +162,7 @@ template <class T>
 bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
     detail::require_finite_pose(pose_a, "intersect", "pose_a");
     detail::require_finite_pose(pose_b, "intersect", "pose_b");
+    const bool swap = detail::mpr_order_swapped(a, pose_a, b, pose_b);
     return std::visit(
         [&](const auto& sa, const auto& sb) {
             using SA = std::decay_t<decltype(sa)>;
@@ -118,6 +176,8 @@ bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b,
                 T h;
                 return detail::refined_contact(md, n, h, pa, pb) && h > T(0);
             } else {
+                // In collide()'s order, so the two agree wherever MPR decides the hit.
+                if (swap) return mpr_intersect(sb, pose_b, sa, pose_a);
                 return mpr_intersect(sa, pose_a, sb, pose_b);
             }
         },
@@ -126,35 +186,35 @@ bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b,
 
 /// Penetration of two shapes with the refined normal: hit, unit normal A → B (world), the overlap
 /// depth along it (> 0) and a point on each body. Poses must be finite (InvalidArgument).
+/// collide(b, pose_b, a, pose_a) gives the same answer with the normal negated and the points
+/// swapped, bit for bit.
 template <class T>
 Penetration<T> collide(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
     detail::require_finite_pose(pose_a, "collide", "pose_a");
     detail::require_finite_pose(pose_b, "collide", "pose_b");
+    const bool swap = detail::mpr_order_swapped(a, pose_a, b, pose_b);
     return std::visit(
         [&](const auto& sa, const auto& sb) {
             using SA = std::decay_t<decltype(sa)>;
             using SB = std::decay_t<decltype(sb)>;
-            const MinkowskiDifference<SA, SB> md(sa, pose_a, sb, pose_b);
-            Penetration<T> out;
-            Vec3<T> n, pa, pb;
-            T h;
-            if (!detail::refined_contact<true>(md, n, h, pa, pb) || !(h > T(0))) return out;
-            out.hit = true;
-            out.normal = pose_a.apply_direction(n);
-            out.depth = h;
-            out.point_a = pose_a.apply(pa);
-            out.point_b = pose_a.apply(pb);
-            return out;
+            if constexpr (detail::answered_by_mpr<SA, SB>) {
+                if (swap) return detail::flipped(detail::collide_pair(sb, pose_b, sa, pose_a));
+            }
+            return detail::collide_pair(sa, pose_a, sb, pose_b);
         },
         a, b);
 }
 
 /// The contact manifold the world uses: up to four points with one normal (A → B), including
 /// speculative points up to `margin` metres apart. count == 0 when the shapes are farther apart.
-/// Poses are assumed finite (the world checks them at the door).
+/// Poses are assumed finite (the world checks them at the door). On pairs answered by MPR the
+/// least-depth expansion runs when the overlap exceeds `exact_depth_above` metres (by default
+/// always; the world passes its linear_slop: shallower overlaps are within round-off of MPR's
+/// answer and cost nothing to leave, docs/collision.md, "Least depth").
 template <class T>
 ContactManifold<T> generate_contacts(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b,
-                                     const Transform<T>& pose_b, T margin) {
+                                     const Transform<T>& pose_b, T margin,
+                                     T exact_depth_above = -ScalarTraits<T>::infinity) {
     return std::visit(
         [&](const auto& sa, const auto& sb) {
             using SA = std::decay_t<decltype(sa)>;
@@ -163,7 +223,7 @@ ContactManifold<T> generate_contacts(const Shape<T>& a, const Transform<T>& pose
             if constexpr (detail::is_round_pair<SA, SB>) return detail::round_manifold(md);  // their own manifolds
             Vec3<T> n, pa, pb;
             T h;
-            if (!detail::refined_contact(md, n, h, pa, pb)) return ContactManifold<T>{};
+            if (!detail::refined_contact(md, n, h, pa, pb, exact_depth_above)) return ContactManifold<T>{};
             return build_manifold(md, n, pa, pb, h, margin);
         },
         a, b);

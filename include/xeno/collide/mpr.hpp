@@ -201,9 +201,12 @@ Penetration<T> contact_from_portal(const SupportPoint<T> (&v)[4], const Vec3<T>&
 }
 
 /// Phases 2 and 3; with stop_at_hit, returns as soon as the origin is known to be inside. The
-/// result is in A's local frame.
+/// result is in A's local frame. On a penetration hit, `simplex` (when given, 4 entries) receives
+/// the tetrahedron v0 and portal the answer came from: points of D around the origin, where the
+/// least-depth expansion (epa.hpp) starts.
 template <class A, class B>
-Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bool stop_at_hit) {
+Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bool stop_at_hit,
+                                         Vec3<typename A::scalar_type>* simplex = nullptr) {
     using T = typename A::scalar_type;
     Penetration<T> result;
     SupportPoint<T> v[4];
@@ -223,10 +226,16 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
         }
         SupportPoint<T> on_ray[4] = {v[0], v[1], v[1], v[1]};
         result = contact_from_portal(on_ray, n, depth);
+        if (simplex)  // flat: the expansion does not start from it
+            for (int i = 0; i < 4; ++i) simplex[i] = on_ray[i].v;
         result.iterations = iterations;
         return result;
     }
 
+    auto keep = [simplex](const SupportPoint<T>(&tetrahedron)[4]) {
+        if (simplex)
+            for (int i = 0; i < 4; ++i) simplex[i] = tetrahedron[i].v;
+    };
     const T scale = md.scale();
     // Convergence within 1e-7 of the pair's size in double (1e-5 in float): on a curved surface
     // the portal must shrink to about sqrt(8 R tau) before it is that flat, and below 1e-7 its
@@ -274,6 +283,7 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
                 const T inv_length = T(1) / std::sqrt(n_sq);
                 result = contact_from_portal(v, n * inv_length, std::max(support_distance * inv_length, T(0)));
                 result.hit = support_distance > T(0);
+                keep(v);
             }
             result.iterations = iterations;
             return result;
@@ -293,7 +303,9 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
             const T best_depth = std::sqrt(best_ratio);
             if (best_ratio < ScalarTraits<T>::infinity && !(depth > T(0) && depth <= T(1.5) * best_depth + tolerance)) {
                 result = contact_from_portal(best, normalized_or(best_n, -v[0].v), best_depth);
+                keep(best);
             } else {
+                keep(v);
                 result = contact_from_portal(v, n, std::max(depth, T(0)));
                 result.hit = depth > T(0);
             }

@@ -930,7 +930,7 @@ void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_beg
             const Transform<T> pose_b = b.child_transform(cb);
             ContactManifold<T> fresh;
             if (!parts || overlaps(box_a, world_bounds(b.child_shape(cb), pose_b)))
-                fresh = generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin);
+                fresh = generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin, settings_.linear_slop);
             if (fresh.count == 0) {  // apart: the contact (if any) ends
                 if (had) end_contact(contacts_[old++]);
                 continue;
