@@ -176,9 +176,10 @@ bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b,
                 T h;
                 return detail::refined_contact(md, n, h, pa, pb) && h > T(0);
             } else {
-                // In collide()'s order, so the two agree wherever MPR decides the hit.
-                if (swap) return mpr_intersect(sb, pose_b, sa, pose_a);
-                return mpr_intersect(sa, pose_a, sb, pose_b);
+                // In collide()'s order, so the two agree wherever MPR decides the hit (the poses
+                // are checked above: MPR directly, not mpr_intersect, which checks them again).
+                if (swap) return detail::mpr(MinkowskiDifference<SB, SA>(sb, pose_b, sa, pose_a), true).hit;
+                return detail::mpr(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b), true).hit;
             }
         },
         a, b);
