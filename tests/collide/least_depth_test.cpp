@@ -124,3 +124,57 @@ TEST_CASE_TEMPLATE("regression (issue 12): a world's contact of deep crossed cyl
     CHECK(deepest >= double(2 * r - d) - 1e-4);
     CHECK(std::abs(double(m.normal.y)) >= 0.99);
 }
+
+namespace {
+
+/// expand_to_least_depth's loop, checking after every expansion that the polytope's faces are
+/// still linked to one another (a face left with unset neighbours sends the next expansion's
+/// search through memory outside the polytope).
+template <class A, class B>
+void expand_checking_links(const A& a, const Transform<typename A::scalar_type>& pose_a, const B& b,
+                           const Transform<typename A::scalar_type>& pose_b) {
+    using T = typename A::scalar_type;
+    const MinkowskiDifference<A, B> md(a, pose_a, b, pose_b);
+    Vec3<T> simplex[4];
+    if (!detail::mpr(md, false, simplex).hit) return;
+    detail::ExpandingPolytope<T> polytope;
+    if (!polytope.start(simplex, md.scale())) return;
+    REQUIRE(polytope.well_linked());
+    for (int k = 0; k < detail::ExpandingPolytope<T>::kMaxVertices; ++k) {
+        const Vec3<T> w = md.support(polytope.nearest().normal).v;
+        if (dot(w, polytope.nearest().normal) - polytope.nearest().distance <= T(1e-7) * md.scale()) return;
+        if (!polytope.expand(w)) return;
+        CAPTURE(k);
+        REQUIRE(polytope.well_linked());
+    }
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("regression: a needle cylinder through a flat capsule keeps the polytope linked (fuzzer, CI of b15ee16)", T, float,
+                   double) {
+    // Found by the narrow-phase fuzzer: a cylinder 1 cm thick and 20 km long through a capsule of
+    // radius 1.87 m, centres 3e-14 m apart. Round-off pinched an expansion's horizon (one vertex
+    // met twice), the fan was linked as if it were one loop, one face kept unset neighbours, and
+    // the next expansion indexed the face array at 13,622 of 124 (UBSan).
+    const Cylinder<T> cylinder(T(0.0053117782119231462), T(10000));
+    const Capsule<T> capsule(T(1.8659295778634755), T(0.0014990729391848809));
+    const Transform<double> pose_a_double{{-195.92667231953186, -145.21690759262015, 126.24037120503566},
+                                          {0.44907407586763975, -0.41476097965844971, -0.55960066303409095, -0.55960066303409095}};
+    const Transform<double> pose_b_double{{-195.92667231953186, -145.21690759262017, 126.24037120503564},
+                                          {-0.62044996523507168, -0.044934114613123521, -0.61786479665438931, 0.48090109070261344}};
+    const Transform<T> pose_a = pose_a_double.cast<T>(), pose_b = pose_b_double.cast<T>();
+    expand_checking_links(cylinder, pose_a, capsule, pose_b);
+    expand_checking_links(capsule, pose_b, cylinder, pose_a);
+    const Shape<T> a = cylinder, b = capsule;
+    const Penetration<T> p = collide(a, pose_a, b, pose_b);
+    REQUIRE(p.hit);
+    CHECK(std::isfinite(double(p.depth)));
+    // The least depth is the capsule's radius plus the cylinder's (B pushed out sideways), within
+    // 1 % or the expansion's absolute tolerance at this pair's size (1e-5 of 10 km in float).
+    const double least = 1.8659295778634755 + 0.0053117782119231462;
+    const double absolute = (std::is_same_v<T, float> ? 1e-5 : 1e-7) * 10002;
+    CHECK(double(p.depth) <= std::max(1.01 * least, least + absolute));
+    CHECK(double(p.depth) >= least - absolute);
+    CHECK(std::abs(double(length(p.normal)) - 1) <= 1e-4);
+}

@@ -89,6 +89,21 @@ public:
         return close_hole(wi);
     }
 
+    /// Whether every live face's neighbours are live faces that name it back across the same
+    /// edge: the invariant expand() keeps (or reports false). For tests and asserts.
+    bool well_linked() const {
+        for (int f = 0; f < face_count_; ++f) {
+            if (!faces_[f].alive) continue;
+            for (int k = 0; k < 3; ++k) {
+                const int g = faces_[f].adj[k], j = faces_[f].adj_edge[k];
+                if (g < 0 || g >= face_count_ || j < 0 || j > 2 || !faces_[g].alive) return false;
+                if (faces_[g].adj[j] != f || faces_[g].adj_edge[j] != k) return false;
+                if (faces_[g].v[j] != faces_[f].v[(k + 1) % 3] || faces_[g].v[(j + 1) % 3] != faces_[f].v[k]) return false;
+            }
+        }
+        return true;
+    }
+
 private:
     static constexpr int kMaxHorizon = kMaxFaces;
 
@@ -175,18 +190,30 @@ private:
             created[i] = slot;
         }
         // Link the fan in order around w: face i's edge b → w is the twin of the edge w → b of
-        // the face whose near end is b (one loop when the horizon is one, as it is in exact
-        // arithmetic; otherwise round-off has broken the surface and the caller stops).
+        // the face whose near end is b. In exact arithmetic the horizon is one simple loop; round-off
+        // can pinch it (a vertex met twice) or split it, and then some face would be linked twice
+        // and another never: walk the loop and refuse anything but one cycle through every face.
+        std::int16_t next[kMaxHorizon];
         for (int i = 0; i < horizon_count_; ++i) {
-            Face& f = faces_[created[i]];
-            int next = -1;
-            for (int j = 0; j < horizon_count_ && next < 0; ++j)
-                if (faces_[created[j]].v[0] == f.v[1]) next = j;
-            if (next < 0 || next == i) return false;
-            Face& g = faces_[created[next]];
-            f.adj[1] = created[next];
+            next[i] = -1;
+            for (int j = 0; j < horizon_count_; ++j) {
+                if (faces_[created[j]].v[0] != faces_[created[i]].v[1]) continue;
+                if (next[i] >= 0 || j == i) return false;  // two candidates, or a face to itself
+                next[i] = static_cast<std::int16_t>(j);
+            }
+            if (next[i] < 0) return false;
+        }
+        int at = 0;
+        for (int step = 1; step <= horizon_count_; ++step) {
+            at = next[at];
+            if ((at == 0) != (step == horizon_count_)) return false;  // back to the start too soon
+        }
+        for (int k = 0; k < horizon_count_; ++k) {
+            Face& f = faces_[created[k]];
+            Face& g = faces_[created[next[k]]];
+            f.adj[1] = created[next[k]];
             f.adj_edge[1] = 2;
-            g.adj[2] = created[i];
+            g.adj[2] = created[k];
             g.adj_edge[2] = 1;
         }
         return true;
