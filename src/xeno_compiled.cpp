@@ -6,5 +6,5 @@
 // your own build and define XENO_COMPILED_LIB for every file that includes xeno.
 #include <xeno/xeno.hpp>
 
-XENO_DETAIL_COMPILED_TEMPLATES(, float)
-XENO_DETAIL_COMPILED_TEMPLATES(, double)
+XENO_DETAIL_COMPILED_TEMPLATES(float)
+XENO_DETAIL_COMPILED_TEMPLATES(double)

@@ -230,4 +230,16 @@ ContactManifold<T> generate_contacts(const Shape<T>& a, const Transform<T>& pose
         a, b);
 }
 
+#ifdef XENO_COMPILED_LIB
+// Compiled mode (compiled.hpp): float and double are compiled once, in src/xeno_compiled.cpp.
+#define XENO_DETAIL_EXTERN_COLLIDE(T)                                                                                 \
+    extern template bool intersect<T>(const Shape<T>&, const Transform<T>&, const Shape<T>&, const Transform<T>&);          \
+    extern template Penetration<T> collide<T>(const Shape<T>&, const Transform<T>&, const Shape<T>&, const Transform<T>&); \
+    extern template ContactManifold<T> generate_contacts<T>(const Shape<T>&, const Transform<T>&, const Shape<T>&,         \
+                                                            const Transform<T>&, T, T);
+XENO_DETAIL_EXTERN_COLLIDE(float)
+XENO_DETAIL_EXTERN_COLLIDE(double)
+#undef XENO_DETAIL_EXTERN_COLLIDE
+#endif
+
 }  // namespace xeno

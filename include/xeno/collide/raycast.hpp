@@ -272,4 +272,11 @@ std::optional<T> raycast(const Aabb<T>& box, const Ray<T>& ray) {
 namespace f32 { using Ray = xeno::Ray<float>; using RayHit = xeno::RayHit<float>; }
 namespace f64 { using Ray = xeno::Ray<double>; using RayHit = xeno::RayHit<double>; }
 
+#ifdef XENO_COMPILED_LIB
+// Compiled mode (compiled.hpp): float and double are compiled once, in src/xeno_compiled.cpp.
+extern template std::optional<RayHit<float>> raycast<float>(const Shape<float>&, const Transform<float>&, const Ray<float>&);
+extern template std::optional<RayHit<double>> raycast<double>(const Shape<double>&, const Transform<double>&,
+                                                              const Ray<double>&);
+#endif
+
 }  // namespace xeno

@@ -541,4 +541,12 @@ void restore_snapshot(World<T>& world, const std::vector<std::uint8_t>& bytes) {
     SnapshotAccess<T>::restore(world, bytes);
 }
 
+#ifdef XENO_COMPILED_LIB
+// Compiled mode (compiled.hpp): float and double are compiled once, in src/xeno_compiled.cpp.
+extern template std::vector<std::uint8_t> save_snapshot<float>(const World<float>&);
+extern template std::vector<std::uint8_t> save_snapshot<double>(const World<double>&);
+extern template void restore_snapshot<float>(World<float>&, const std::vector<std::uint8_t>&);
+extern template void restore_snapshot<double>(World<double>&, const std::vector<std::uint8_t>&);
+#endif
+
 }  // namespace xeno

@@ -1336,4 +1336,10 @@ using ContactEvent = xeno::ContactEvent<double>;
 using WorldRayHit = xeno::WorldRayHit<double>;
 }  // namespace f64
 
+#ifdef XENO_COMPILED_LIB
+// Compiled mode (compiled.hpp): float and double are compiled once, in src/xeno_compiled.cpp.
+extern template class World<float>;
+extern template class World<double>;
+#endif
+
 }  // namespace xeno

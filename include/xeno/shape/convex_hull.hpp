@@ -906,4 +906,10 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
 namespace f32 { using ConvexHull = xeno::ConvexHull<float>; }
 namespace f64 { using ConvexHull = xeno::ConvexHull<double>; }
 
+#ifdef XENO_COMPILED_LIB
+// Compiled mode (compiled.hpp): float and double are compiled once, in src/xeno_compiled.cpp.
+extern template ConvexHull<float> make_convex_hull<float>(const std::vector<Vec3<float>>&);
+extern template ConvexHull<double> make_convex_hull<double>(const std::vector<Vec3<double>>&);
+#endif
+
 }  // namespace xeno
