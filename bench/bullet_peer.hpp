@@ -96,7 +96,8 @@ inline std::unique_ptr<btRigidBody> make_body(btCollisionShape* shape, btScalar 
 inline Scene pyramid(int base, const btVector3& gravity) {
     Scene s = make_scene(gravity);
     const btScalar ground_half = btScalar(std::max(50, base));
-    s.ground = make_body(add_box_shape(s, btVector3(ground_half, btScalar(0.5), ground_half)), 0, btVector3(0, btScalar(-0.5), 0));
+    s.ground =
+        make_body(add_box_shape(s, btVector3(ground_half, btScalar(0.5), ground_half)), 0, btVector3(0, btScalar(-0.5), 0));
     s.world->addRigidBody(s.ground.get());
     btCollisionShape* cube = add_box_shape(s, btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5)));
     for (int row = 0; row < base; ++row) {

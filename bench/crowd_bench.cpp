@@ -65,8 +65,9 @@ void run(int n, const char* name) {
         }
         const T overlap = deepest_overlap(centres);
         if (!finite || overlap <= T(0.01) || step == 600) {
-            std::printf("  t = %.1f s: deepest overlap %.4f m, every state finite: %s; slowest step %.0f ms, peak memory %ld MB\n",
-                        step / 60.0, static_cast<double>(overlap), finite ? "yes" : "NO", slowest, peak_megabytes());
+            std::printf(
+                "  t = %.1f s: deepest overlap %.4f m, every state finite: %s; slowest step %.0f ms, peak memory %ld MB\n",
+                step / 60.0, static_cast<double>(overlap), finite ? "yes" : "NO", slowest, peak_megabytes());
             return;
         }
     }

@@ -68,8 +68,8 @@ void run(const char* precision, bool on_sphere, std::size_t max_points, int runs
         const double seconds = time_hull(points, n >= 50000 ? std::min(runs, 2) : runs, vertices, faces);
         std::string ratio = "-";
         if (previous > 0.0) ratio = std::to_string(seconds / previous).substr(0, 4);
-        std::printf("%-6s %-6s %8zu %10.4f %8s %9zu %9zu\n", precision, on_sphere ? "sphere" : "ball", n, seconds,
-                    ratio.c_str(), vertices, faces);
+        std::printf("%-6s %-6s %8zu %10.4f %8s %9zu %9zu\n", precision, on_sphere ? "sphere" : "ball", n, seconds, ratio.c_str(),
+                    vertices, faces);
         std::fflush(stdout);
         previous = seconds;
     }

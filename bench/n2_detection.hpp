@@ -86,8 +86,9 @@ Scene<T> make_box_scene(std::size_t n, std::uint64_t seed = kN2Seed) {
     s.shape_of.assign(n, 0);
     s.poses.reserve(n);
     for (std::size_t i = 0; i < n; ++i) s.poses.push_back({rng.in_box(half), rng.rotation<T>()});
-    s.description = "unit boxes (half extents 0.5), centres uniform in a cube of side (8N)^(1/3), "
-                    "uniform random orientations";
+    s.description =
+        "unit boxes (half extents 0.5), centres uniform in a cube of side (8N)^(1/3), "
+        "uniform random orientations";
     return s;
 }
 
@@ -97,12 +98,13 @@ Scene<T> make_box_scene(std::size_t n, std::uint64_t seed = kN2Seed) {
 template <class T>
 Scene<T> make_mixed_scene(std::size_t n, std::uint64_t seed = kN2Seed) {
     Scene<T> s = make_box_scene<T>(n, seed);
-    s.shapes = {Box<T>(T(0.5), T(0.5), T(0.5)), Sphere<T>(T(0.5)),    Capsule<T>(T(0.3), T(0.4)),
+    s.shapes = {Box<T>(T(0.5), T(0.5), T(0.5)), Sphere<T>(T(0.5)),     Capsule<T>(T(0.3), T(0.4)),
                 Cylinder<T>(T(0.5), T(0.5)),    Cone<T>(T(0.5), T(1)), make_regular_prism(6, T(0.5), T(0.5))};
     scenes::Random rng(seed ^ 0x9E3779B97F4A7C15ull);
     for (std::uint32_t& k : s.shape_of) k = rng.index(static_cast<std::uint32_t>(s.shapes.size()));
-    s.description = "mixed: box 0.5, sphere r 0.5, capsule r 0.3 hh 0.4, cylinder r 0.5 hh 0.5, cone r 0.5 h 1, "
-                    "hexagonal prism hull r 0.5 hh 0.5, uniform choice; same cube and orientations";
+    s.description =
+        "mixed: box 0.5, sphere r 0.5, capsule r 0.3 hh 0.4, cylinder r 0.5 hh 0.5, cone r 0.5 h 1, "
+        "hexagonal prism hull r 0.5 hh 0.5, uniform choice; same cube and orientations";
     return s;
 }
 
@@ -118,7 +120,8 @@ Scene<T> make_clustered_scene(std::size_t n, std::size_t clusters, std::uint64_t
     for (std::size_t k = 0; k < clusters; ++k) centres.push_back(rng.in_box(Vec3<T>::one() * (T(0.5) * s.side)));
     for (std::size_t i = 0; i < n; ++i)
         s.poses[i].position = centres[i % clusters] + rng.in_box(Vec3<T>::one() * static_cast<T>(0.5 * clump));
-    s.description = std::to_string(clusters) + " clumps of unit boxes (4 unit volumes per box), clump centres in a cube 8x the clump side";
+    s.description =
+        std::to_string(clusters) + " clumps of unit boxes (4 unit volumes per box), clump centres in a cube 8x the clump side";
     return s;
 }
 
@@ -331,7 +334,8 @@ void Detector<T>::all_pairs_mpr(const Scene<T>& s) {
     });
     contacts_.clear();
     for (auto& chunk : chunks) contacts_.insert(contacts_.end(), chunk.second.begin(), chunk.second.end());
-    std::sort(contacts_.begin(), contacts_.end(), [](const PairContact<T>& x, const PairContact<T>& y) { return x.pair < y.pair; });
+    std::sort(contacts_.begin(), contacts_.end(),
+              [](const PairContact<T>& x, const PairContact<T>& y) { return x.pair < y.pair; });
 }
 
 }  // namespace xeno::bench

@@ -210,9 +210,10 @@ int main(int argc, char** argv) {
     const std::clock_t cpu_start = std::clock();
     std::printf("scene: %s\n", make_box_scene<Real>(1, opt.seed).description.c_str());
     std::printf("mixed: %s\n", make_mixed_scene<Real>(1, opt.seed).description.c_str());
-    std::printf("pass: world boxes + broad phase + collide() per pair (contact of every overlapping pair);\n"
-                "      brute = mpr_penetration on every pair, concrete Box<double> (box scene) or one std::visit\n"
-                "      per pair (mixed), no bounding-volume test; rows: best of up to 5 cold passes\n\n");
+    std::printf(
+        "pass: world boxes + broad phase + collide() per pair (contact of every overlapping pair);\n"
+        "      brute = mpr_penetration on every pair, concrete Box<double> (box scene) or one std::visit\n"
+        "      per pair (mixed), no bounding-volume test; rows: best of up to 5 cold passes\n\n");
 
     std::vector<Row> rows;
     std::vector<Detail> details;
@@ -267,8 +268,9 @@ int main(int argc, char** argv) {
     }
 
     // 2. Cold and warm full passes for sap and tree at the large sizes.
-    std::printf("cold (first pass, fresh broad phase; best of 3) and warm (after every body moved <= 1 cm and\n"
-                "turned <= 0.01 rad; best of 5 frames) full passes, box scene unless stated\n");
+    std::printf(
+        "cold (first pass, fresh broad phase; best of 3) and warm (after every body moved <= 1 cm and\n"
+        "turned <= 0.01 rad; best of 5 frames) full passes, box scene unless stated\n");
     std::printf("%9s  %-6s %-6s %12s %12s %12s %12s %9s\n", "bodies", "scene", "strat", "cold", "cold broad", "warm",
                 "warm broad", "contacts");
     for (const std::size_t n : large_ns) {
@@ -280,8 +282,7 @@ int main(int argc, char** argv) {
                 const char* sc = mixed ? "mixed" : "boxes";
                 std::printf("%9zu  %-6s %-6s %12s %12s %12s %12s %9zu\n", n, sc, strategy_name(s),
                             format_seconds(best(cw.cold)).c_str(), format_seconds(best(cw.cold_broad)).c_str(),
-                            format_seconds(best(cw.warm)).c_str(), format_seconds(best(cw.warm_broad)).c_str(),
-                            cw.last.contacts);
+                            format_seconds(best(cw.warm)).c_str(), format_seconds(best(cw.warm_broad)).c_str(), cw.last.contacts);
                 details.push_back({sc, n, strategy_name(s), "cold", best(cw.cold), cw.last.contacts});
                 details.push_back({sc, n, strategy_name(s), "warm", best(cw.warm), cw.last.contacts});
                 details.push_back({sc, n, strategy_name(s), "cold_broad", best(cw.cold_broad), cw.last.broad_pairs});
@@ -300,7 +301,8 @@ int main(int argc, char** argv) {
             Detector<Real> probe(s);
             const PassResult first = probe.broad_only(scene);
             if (first.seconds > 60) {
-                std::printf("  %-5s cold %s: over a minute, not repeated\n", strategy_name(s), format_seconds(first.seconds).c_str());
+                std::printf("  %-5s cold %s: over a minute, not repeated\n", strategy_name(s),
+                            format_seconds(first.seconds).c_str());
                 details.push_back({"boxes", huge_n, strategy_name(s), "broad_cold", first.seconds, first.broad_pairs});
                 continue;
             }
@@ -336,7 +338,8 @@ int main(int argc, char** argv) {
 
     // 5. The parallel narrow phase: 1 thread against --threads through the default parallel-for.
     if (opt.threads > 1) {
-        std::printf("parallel narrow phase (std::thread parallel-for): 1 vs %u threads, best of 3 (sap: of 5 warm frames)\n", opt.threads);
+        std::printf("parallel narrow phase (std::thread parallel-for): 1 vs %u threads, best of 3 (sap: of 5 warm frames)\n",
+                    opt.threads);
         const std::size_t nb = std::min<std::size_t>(table_ns.back(), opt.max_bodies);
         const Scene<Real> scene = make_box_scene<Real>(nb, opt.seed);
         for (const unsigned t : {1u, opt.threads}) {
@@ -369,7 +372,8 @@ int main(int argc, char** argv) {
     // 6. Does the tree win anywhere? Warm passes on other distributions.
     {
         const std::size_t n = std::min<std::size_t>(large_ns.back(), opt.max_bodies);
-        std::printf("tree against sweep and prune, %zu bodies: warm full pass / warm broad only / cold full pass (best of 5, 5, 3)\n", n);
+        std::printf(
+            "tree against sweep and prune, %zu bodies: warm full pass / warm broad only / cold full pass (best of 5, 5, 3)\n", n);
         struct Workload {
             const char* name;
             Scene<Real> scene;
@@ -406,9 +410,10 @@ int main(int argc, char** argv) {
         std::ofstream csv(opt.out + "/n2_details.csv");
         csv << "scene,bodies,strategy,phase,seconds,pairs\n";
         for (const Detail& d : details)
-            csv << d.scene << ',' << d.bodies << ',' << d.strategy << ',' << d.phase << ',' << d.seconds << ',' << d.pairs << '\n';
+            csv << d.scene << ',' << d.bodies << ',' << d.strategy << ',' << d.phase << ',' << d.seconds << ',' << d.pairs
+                << '\n';
     }
-    const std::vector<std::string> columns = {"brute", "brute_bounds", "sap", "tree",
+    const std::vector<std::string> columns = {"brute",       "brute_bounds",       "sap",       "tree",
                                               "brute_mixed", "brute_bounds_mixed", "sap_mixed", "tree_mixed"};
     {
         std::ofstream dat(opt.out + "/n2_plot.dat");
@@ -455,9 +460,10 @@ int main(int argc, char** argv) {
     }
     const double wall = seconds_since(run_start);
     const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    std::printf("run: %.1f s wall, %.1f s CPU (this process); load average at end: %s\n"
-                "(CPU well under wall in single-threaded sections means other jobs shared the cores)\n",
-                wall, cpu, load_average().c_str());
+    std::printf(
+        "run: %.1f s wall, %.1f s CPU (this process); load average at end: %s\n"
+        "(CPU well under wall in single-threaded sections means other jobs shared the cores)\n",
+        wall, cpu, load_average().c_str());
     std::printf("wrote %s/n2.csv, %s/n2_details.csv, %s/n2_plot.dat, %s/n2_plot.gp\n", opt.out.c_str(), opt.out.c_str(),
                 opt.out.c_str(), opt.out.c_str());
     if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {

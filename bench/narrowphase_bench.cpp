@@ -2,13 +2,14 @@
 // SPDX-License-Identifier: MIT
 //
 // Per-pair cost of the narrow phase: box–box, 32-vertex hull pairs, capsule–hull, the pairs
-// answered in closed form (sphere–sphere, sphere–capsule, capsule–capsule, sphere–box,
-// capsule–box) and curved pairs left to MPR (cylinder–cone, capsule–cone, cylinder–hull), overlapping and separated (bounding spheres overlap, shapes do not: what a broad
-// phase lets through), float and double. Columns: the MPR path (mpr_intersect, mpr_penetration:
-// what intersect() and collide() ran for every pair but box–box before the closed forms), the
-// public intersect() and collide(), and the world's manifold. libccd's MPR (ccdMPRIntersect / ccdMPRPenetration, Debian's
-// libccd-dev, double precision) runs on the same poses in the same process as the baseline, fed
-// with the same support functions through its void* callbacks, as a libccd user would.
+// answered in closed form (sphere–sphere, sphere–capsule, capsule–capsule, sphere–box, capsule–box)
+// and curved pairs left to MPR (cylinder–cone, capsule–cone, cylinder–hull), overlapping and
+// separated (bounding spheres overlap, shapes do not: what a broad phase lets through), float and
+// double. Columns: the MPR path (mpr_intersect, mpr_penetration: what intersect() and collide() ran
+// for every pair but box–box before the closed forms), the public intersect() and collide(), and
+// the world's manifold. libccd's MPR (ccdMPRIntersect / ccdMPRPenetration, Debian's libccd-dev,
+// double precision) runs on the same poses in the same process as the baseline, fed with the same
+// support functions through its void* callbacks, as a libccd user would.
 //
 //   xeno_narrowphase_bench "[summary]"   the ratio table (what the README quotes)
 //   xeno_narrowphase_bench "[bench]"     Catch2 statistics per query
@@ -156,7 +157,9 @@ Row time_xeno(const std::string& pair, const std::string& set, const SA& a, cons
         for (int i = 0; i < kPairs; ++i) sink = sink + collide(shape_a, poses.a[i], shape_b, poses.b[i]).hit;
     });
     r.manifold_ns = ns_per_pair([&] {
-        for (int i = 0; i < kPairs; ++i) sink = sink + generate_contacts(shape_a, poses.a[i], shape_b, poses.b[i], T(0), T(0.005)).count;  // the world's default linear_slop
+        for (int i = 0; i < kPairs; ++i)
+            sink = sink + generate_contacts(shape_a, poses.a[i], shape_b, poses.b[i], T(0), T(0.005))
+                              .count;  // the world's default linear_slop
     });
     return r;
 }
@@ -227,8 +230,10 @@ void accuracy(const char* name, const SA& a, const SB& b, std::uint64_t seed) {
 #endif
         ++n;
     }
-    std::printf("%-14s depth above the exact minimum: xeno refined mean %6.2f%% max %6.2f%% | xeno MPR alone mean %6.2f%% max %6.2f%% | libccd mean %6.2f%% max %6.2f%%\n",
-                name, 100 * xeno_sum / n, 100 * xeno_max, 100 * mpr_sum / n, 100 * mpr_max, 100 * ccd_sum / n, 100 * ccd_max);
+    std::printf(
+        "%-14s depth above the exact minimum: xeno refined mean %6.2f%% max %6.2f%% | xeno MPR alone mean %6.2f%% max %6.2f%% | "
+        "libccd mean %6.2f%% max %6.2f%%\n",
+        name, 100 * xeno_sum / n, 100 * xeno_max, 100 * mpr_sum / n, 100 * mpr_max, 100 * ccd_sum / n, 100 * ccd_max);
 }
 
 }  // namespace

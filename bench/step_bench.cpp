@@ -110,9 +110,11 @@ struct PyramidRun {
 
 /// `engine`: xeno's precision, or "bullet". One layout for both, so the rows line up.
 void print_pyramid_row(int base, const char* engine, const PyramidRun& r, int steps) {
-    std::printf("pyramid-%-4d %6zu boxes %-6s %8.2f ms/step %7.0f contacts %7.0f points | after %4.1f s: worst move %.3f m, top sag %.4f m%s\n",
-                base, r.boxes, engine, r.timing.ms_per_step, r.timing.contacts_per_step, r.timing.points_per_step, steps / 60.0, r.worst_move,
-                r.top_sag, base == 100 ? (r.worst_move < 0.25 ? "  (stands: < 0.25)" : "  (FAILS: >= 0.25)") : "");
+    std::printf(
+        "pyramid-%-4d %6zu boxes %-6s %8.2f ms/step %7.0f contacts %7.0f points | after %4.1f s: worst move %.3f m, top sag %.4f "
+        "m%s\n",
+        base, r.boxes, engine, r.timing.ms_per_step, r.timing.contacts_per_step, r.timing.points_per_step, steps / 60.0,
+        r.worst_move, r.top_sag, base == 100 ? (r.worst_move < 0.25 ? "  (stands: < 0.25)" : "  (FAILS: >= 0.25)") : "");
 }
 
 /// Runs and prints xeno's row for the pyramid; returns its ms/step (for the Bullet ratio).
@@ -124,7 +126,8 @@ double pyramid_row(int base, int steps) {
     for (BodyId id : scene.bodies) placed.push_back(world.body(id).position());
     const Timing t = time_steps(world, steps);
     double worst = 0;
-    for (std::size_t i = 0; i < placed.size(); ++i) worst = std::max(worst, double(length(world.body(scene.bodies[i]).position() - placed[i])));
+    for (std::size_t i = 0; i < placed.size(); ++i)
+        worst = std::max(worst, double(length(world.body(scene.bodies[i]).position() - placed[i])));
     const double sag = double(placed.back().y - world.body(scene.bodies.back()).position().y);
     print_pyramid_row(base, precision<T>(), {scene.bodies.size(), t, worst, sag}, steps);
     return t.ms_per_step;
@@ -136,9 +139,11 @@ void bullet_pyramid_row([[maybe_unused]] int base, [[maybe_unused]] int steps, [
 #if XENO_HAVE_BULLET
     const Vec3<float> g = WorldSettings<float>{}.gravity;  // xeno's default, so both pyramids weigh the same
     const bullet_peer::PyramidRun b = bullet_peer::run_pyramid(base, steps, btVector3(g.x, g.y, g.z));
-    print_pyramid_row(base, "bullet", {b.boxes, {b.ms_per_step, b.contacts_per_step, b.points_per_step}, b.worst_move, b.top_sag}, steps);
+    print_pyramid_row(base, "bullet", {b.boxes, {b.ms_per_step, b.contacts_per_step, b.points_per_step}, b.worst_move, b.top_sag},
+                      steps);
     if (b.missed_steps > 0) std::printf("  (Bullet ran %d of its %d steps with other than one substep)\n", b.missed_steps, steps);
-    std::printf("  xeno float / Bullet: %.2f%s\n", xeno_float_ms / b.ms_per_step, base == 20 ? " (issue goal for the 210 pyramid: <= 0.52)" : "");
+    std::printf("  xeno float / Bullet: %.2f%s\n", xeno_float_ms / b.ms_per_step,
+                base == 20 ? " (issue goal for the 210 pyramid: <= 0.52)" : "");
 #endif
 }
 
@@ -154,8 +159,8 @@ void drop_row(int n, int steps) {
     World<T> world(no_sleep<T>());
     drop_boxes(world, n);
     const Timing t = time_steps(world, steps);
-    std::printf("drop-%-7d %6d boxes %-6s %8.2f ms/step %7.0f contacts %7.0f points | over %.1f s of falling and settling\n", n, n,
-                precision<T>(), t.ms_per_step, t.contacts_per_step, t.points_per_step, steps / 60.0);
+    std::printf("drop-%-7d %6d boxes %-6s %8.2f ms/step %7.0f contacts %7.0f points | over %.1f s of falling and settling\n", n,
+                n, precision<T>(), t.ms_per_step, t.contacts_per_step, t.points_per_step, steps / 60.0);
 }
 
 /// Issue "game features": a settled pile asleep against the same pile kept awake. Steps with
@@ -191,9 +196,12 @@ void sleep_row(int n, bool block) {
     for (BodyId id : ids) world.body(id).wake();
     const Timing awake = time_steps(world, 60);
     std::printf("%-6s %5zu boxes %-6s %s %5.1f s: %7.3f ms/step then, %7.2f ms/step awake (%5.1f %%; goal < 10 %%)\n",
-                block ? "block" : "pile", ids.size(), precision<T>(), still_awake == 0 ? "all asleep after" : "NOT all asleep at ", settle / 60.0,
-                asleep.ms_per_step, awake.ms_per_step, 100.0 * asleep.ms_per_step / awake.ms_per_step);
-    if (still_awake > 0) std::printf("       (%zu bodies in islands still awake: the pile is one island and some box in it keeps moving)\n", still_awake);
+                block ? "block" : "pile", ids.size(), precision<T>(),
+                still_awake == 0 ? "all asleep after" : "NOT all asleep at ", settle / 60.0, asleep.ms_per_step,
+                awake.ms_per_step, 100.0 * asleep.ms_per_step / awake.ms_per_step);
+    if (still_awake > 0)
+        std::printf("       (%zu bodies in islands still awake: the pile is one island and some box in it keeps moving)\n",
+                    still_awake);
 }
 
 template <class T>
@@ -237,8 +245,11 @@ void memory_row(int n) {
     }
     const double pair_persistent = double(sizeof(Contact<T>) + sizeof(ProxyPair));
     const double pair_stepping = touching > 0 ? double(with_pairs - stepping) / double(touching) : 0.0;
-    std::printf("%8d bodies %-6s %9.1f KB | %5.0f bytes/body between steps, %5.0f during a step | %7zu pairs: %4.0f bytes/pair kept, %5.0f during a step\n",
-                n, precision<T>(), double(stepping) / 1024, double(persistent) / n, double(stepping) / n, touching, pair_persistent, pair_stepping);
+    std::printf(
+        "%8d bodies %-6s %9.1f KB | %5.0f bytes/body between steps, %5.0f during a step | %7zu pairs: %4.0f bytes/pair kept, "
+        "%5.0f during a step\n",
+        n, precision<T>(), double(stepping) / 1024, double(persistent) / n, double(stepping) / n, touching, pair_persistent,
+        pair_stepping);
 }
 
 }  // namespace
@@ -258,9 +269,10 @@ int main(int argc, char** argv) {
     const int steps = quick ? 60 : 600;  // 10 s at 60 Hz
     std::printf("World::step, one thread, 60 Hz, %d steps each, default settings (soft step, 12 substeps), no sleeping\n", steps);
 #if XENO_HAVE_BULLET
-    std::printf("Bullet %d.%02d beside xeno float: btDiscreteDynamicsWorld with its defaults (10 solver iterations), one 1/60 s\n"
-                "substep per step, no deactivation; friction 0.6 per body, which Bullet combines to 0.36 per pair (xeno: 0.6)\n",
-                btGetVersion() / 100, btGetVersion() % 100);
+    std::printf(
+        "Bullet %d.%02d beside xeno float: btDiscreteDynamicsWorld with its defaults (10 solver iterations), one 1/60 s\n"
+        "substep per step, no deactivation; friction 0.6 per body, which Bullet combines to 0.36 per pair (xeno: 0.6)\n",
+        btGetVersion() / 100, btGetVersion() % 100);
 #endif
     for (int base : {20, 40}) pyramid_rows(base, steps);
     if (!quick) pyramid_rows(100, steps);
@@ -268,13 +280,15 @@ int main(int argc, char** argv) {
         drop_row<float>(n, quick ? 60 : 300);
         drop_row<double>(n, quick ? 60 : 300);
     }
-    std::printf("\nSleeping: a settled pile steps asleep, then woken with sleeping off (block: resting columns; pile: dropped)\n");
+    std::printf(
+        "\nSleeping: a settled pile steps asleep, then woken with sleeping off (block: resting columns; pile: dropped)\n");
     for (const bool block : {true, false}) {
         sleep_row<float>(quick ? 400 : 4000, block);
         sleep_row<double>(quick ? 400 : 4000, block);
     }
-    std::printf("\nMemory (counting allocator, world.reserve() called; bodies share one shape). 'Between steps' is the\n"
-                "world's state; 'during a step' adds the solver's scratch (per awake body and per manifold).\n");
+    std::printf(
+        "\nMemory (counting allocator, world.reserve() called; bodies share one shape). 'Between steps' is the\n"
+        "world's state; 'during a step' adds the solver's scratch (per awake body and per manifold).\n");
     std::printf("thesis (Quadro 25): 1,274 bytes/body, 380 bytes/touching pair\n");
     for (int n : {10, 100, 1000, 10000, 100000}) {
         if (quick && n > 10000) break;

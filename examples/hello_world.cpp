@@ -15,7 +15,7 @@ int main() {
     std::vector<xeno::BodyId> boxes;
     for (int i = 0; i < 5; ++i) {
         const xs::Real k = static_cast<xs::Real>(i);  // xs::Real: double here, float in f32
-        xs::BodyDef box;  // dynamic, 1000 kg/m³
+        xs::BodyDef box;                              // dynamic, 1000 kg/m³
         box.position = {xs::Real(0.2) * k, 1 + xs::Real(1.5) * k, 0};
         box.orientation = xs::Quat::from_axis_angle({1, 1, 0}, xs::Real(0.3) * k);
         boxes.push_back(world.create_body(xs::Box(0.5, 0.5, 0.5), box));

@@ -75,25 +75,25 @@ struct Options {
 
 /// One row of a scene's CSV: the two runs compared after a step.
 struct Sample {
-    double time;            ///< s since the start
-    double pos_diff;        ///< m, max over dynamic bodies
-    double angle_diff_deg;  ///< degrees, max over dynamic bodies
+    double time;              ///< s since the start
+    double pos_diff;          ///< m, max over dynamic bodies
+    double angle_diff_deg;    ///< degrees, max over dynamic bodies
     double depth_f, depth_d;  ///< m, deepest contact overlap in each build (0 if none)
-    double ke_f, ke_d;      ///< J, total kinetic energy in each build
+    double ke_f, ke_d;        ///< J, total kinetic energy in each build
 };
 
 /// One row of the summary table.
 struct Result {
     std::string scene;
-    std::size_t bodies = 0;     ///< dynamic bodies
-    double part_time = -1;      ///< s; < 0: never parted
+    std::size_t bodies = 0;  ///< dynamic bodies
+    double part_time = -1;   ///< s; < 0: never parted
     double pos_at_1s = 0, pos_end = 0, angle_end_deg = 0;
     double depth_max_f = 0, depth_max_d = 0;  ///< m, deepest overlap after the first second
-    bool any_contact = false;   ///< some contact overlapped at some step (the plot's depth axis)
+    bool any_contact = false;                 ///< some contact overlapped at some step (the plot's depth axis)
     double ke_end_f = 0, ke_end_d = 0;
     double decade_time = std::numeric_limits<double>::quiet_NaN();  ///< s for the difference to grow ×10
     std::string verdict;
-    double wall = 0;            ///< s of wall-clock time for both runs
+    double wall = 0;  ///< s of wall-clock time for both runs
 };
 
 template <class T>
@@ -216,7 +216,8 @@ Result run_scene(const std::string& name, const Options& opt, std::vector<Sample
             const Body<float>& bf = wf.body(bodies_f[i]);
             const double d = length(Vec3<double>(bf.position()) - bd.position());
             s.pos_diff = std::isfinite(d) ? std::max(s.pos_diff, d) : d;  // a NaN stays NaN
-            s.angle_diff_deg = std::max(s.angle_diff_deg, rotation_angle(bd.orientation(), Quat<double>(bf.orientation())) * 180.0 / ScalarTraits<double>::pi);
+            s.angle_diff_deg = std::max(s.angle_diff_deg, rotation_angle(bd.orientation(), Quat<double>(bf.orientation())) *
+                                                              180.0 / ScalarTraits<double>::pi);
         }
         s.depth_f = deepest_contact(wf);
         s.depth_d = deepest_contact(wd);
@@ -273,8 +274,9 @@ std::string number(const char* format, double v) {
 void write_summary_csv(const std::filesystem::path& file, const std::vector<Result>& results) {
     std::FILE* f = std::fopen(file.string().c_str(), "w");
     if (!f) throw std::runtime_error("cannot write " + file.string());
-    std::fprintf(f, "scene,bodies,part_time_s,pos_diff_1s_m,pos_diff_end_m,angle_diff_end_deg,max_depth_f_m,max_depth_d_m,"
-                    "ke_end_f_J,ke_end_d_J,decade_time_s,verdict,wall_s\n");
+    std::fprintf(f,
+                 "scene,bodies,part_time_s,pos_diff_1s_m,pos_diff_end_m,angle_diff_end_deg,max_depth_f_m,max_depth_d_m,"
+                 "ke_end_f_J,ke_end_d_J,decade_time_s,verdict,wall_s\n");
     for (const Result& r : results)
         std::fprintf(f, "%s,%zu,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,%s,%.3f\n", r.scene.c_str(), r.bodies,
                      r.part_time < 0 ? "never" : number("%.4f", r.part_time).c_str(), r.pos_at_1s, r.pos_end, r.angle_end_deg,
@@ -284,19 +286,21 @@ void write_summary_csv(const std::filesystem::path& file, const std::vector<Resu
 }
 
 const char* const table_header =
-    "scene           bodies  part (s)  pos@1s (m)  pos@end (m)  ang@end (deg)  depth>1s f/d (mm)  KE end f / d (J)       x10 (s)  verdict\n";
+    "scene           bodies  part (s)  pos@1s (m)  pos@end (m)  ang@end (deg)  depth>1s f/d (mm)  KE end f / d (J)       x10 (s) "
+    " verdict\n";
 
 void print_row(const Result& r) {
-    std::printf("%-15s %6zu  %8s  %10.2e  %11.2e  %13.3g  %7.2f / %-7.2f  %9.3g / %-9.3g  %7s  %s\n", r.scene.c_str(),
-                r.bodies, part_text(r).c_str(), r.pos_at_1s, r.pos_end, r.angle_end_deg, r.depth_max_f * 1e3,
-                r.depth_max_d * 1e3, r.ke_end_f, r.ke_end_d, number("%.2f", r.decade_time).c_str(), r.verdict.c_str());
+    std::printf("%-15s %6zu  %8s  %10.2e  %11.2e  %13.3g  %7.2f / %-7.2f  %9.3g / %-9.3g  %7s  %s\n", r.scene.c_str(), r.bodies,
+                part_text(r).c_str(), r.pos_at_1s, r.pos_end, r.angle_end_deg, r.depth_max_f * 1e3, r.depth_max_d * 1e3,
+                r.ke_end_f, r.ke_end_d, number("%.2f", r.decade_time).c_str(), r.verdict.c_str());
     std::fflush(stdout);
 }
 
 void print_markdown(const std::vector<Result>& results, const Options& opt) {
-    std::printf("\n| scene | bodies | part (s) | pos diff at 1 s (m) | pos diff at %g s (m) | angle diff at end (°) | "
-                "max depth after 1 s, float / double (mm) | KE at end float / double (J) | ×10 every (s) | verdict |\n",
-                opt.seconds);
+    std::printf(
+        "\n| scene | bodies | part (s) | pos diff at 1 s (m) | pos diff at %g s (m) | angle diff at end (°) | "
+        "max depth after 1 s, float / double (mm) | KE at end float / double (J) | ×10 every (s) | verdict |\n",
+        opt.seconds);
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (const Result& r : results)
         std::printf("| %s | %zu | %s | %.1e | %.1e | %.3g | %.2f / %.2f | %.3g / %.3g | %s | %s |\n", r.scene.c_str(), r.bodies,
@@ -330,7 +334,10 @@ bool plot_scene(const std::filesystem::path& csv, const std::filesystem::path& p
     s += "set terminal pngcairo size 640,400 font 'sans,8'\n";
     s += "set output " + quoted(png.string()) + "\n";
     s += "set datafile separator ','\n";
-    s += "set multiplot layout 2,1 title " + quoted(r.scene + ": float against double (" + r.verdict + ", part " + part_text(r) + (r.part_time < 0 ? "" : " s") + ")") + "\n";
+    s += "set multiplot layout 2,1 title " +
+         quoted(r.scene + ": float against double (" + r.verdict + ", part " + part_text(r) + (r.part_time < 0 ? "" : " s") +
+                ")") +
+         "\n";
     s += "set grid lc rgb '#dddddd'\n";
     s += "set xrange [0:" + std::to_string(opt.seconds) + "]\n";
     s += "set lmargin 10\nset rmargin 10\n";
@@ -338,7 +345,8 @@ bool plot_scene(const std::filesystem::path& csv, const std::filesystem::path& p
     s += "set logscale y\nset format y '10^{%L}'\nset yrange [1e-9:*]\n";
     s += "set ylabel 'difference'\n";
     s += "clip(v) = v > 1e-9 ? v : 1e-9\n";
-    s += "plot " + quoted(csv.string()) + " using 1:(clip($2)) with lines lw 1.5 lc rgb '#1f77b4' title 'position (m)', "
+    s += "plot " + quoted(csv.string()) +
+         " using 1:(clip($2)) with lines lw 1.5 lc rgb '#1f77b4' title 'position (m)', "
          "'' using 1:(clip($3)) with lines lw 1 lc rgb '#ff7f0e' title 'angle (deg)', " +
          std::string(threshold) + " with lines dt 2 lc rgb '#888888' title 'part (" + threshold + " m)'\n";
     s += "set ylabel 'kinetic energy (J)'\nset xlabel 'time (s)'\nset yrange [1e-8:*]\n";
@@ -408,7 +416,8 @@ int parse(int argc, char** argv, Options& opt) {
             std::fputs(usage, stdout);
             return 0;
         } else if (a == "--list") {
-            for (const auto& [name, description] : scenes::scene_list()) std::printf("%-15s %s\n", name.c_str(), description.c_str());
+            for (const auto& [name, description] : scenes::scene_list())
+                std::printf("%-15s %s\n", name.c_str(), description.c_str());
             return 0;
         } else if (a == "--out") {
             const char* v = value("--out");
@@ -482,7 +491,9 @@ int main(int argc, char** argv) {
         if (plot) plots_ok = plot_summary(dir / "summary.png", results, opt) && plots_ok;
         if (!plots_ok) std::fprintf(stderr, "xeno_precision: gnuplot failed on some plots\n");
         if (opt.markdown) print_markdown(results, opt);
-        const auto count = [&](const char* v) { return std::count_if(results.begin(), results.end(), [&](const Result& r) { return r.verdict == v; }); };
+        const auto count = [&](const char* v) {
+            return std::count_if(results.begin(), results.end(), [&](const Result& r) { return r.verdict == v; });
+        };
         std::printf("%zu scenes: %td agree, %td part late, %td chaotic; %.1f s of simulation; written to %s\n", results.size(),
                     count("agree"), count("parts"), count("chaotic"), wall, dir.string().c_str());
     } catch (const std::exception& e) {

@@ -56,8 +56,8 @@ const char* const usage =
 /// The outcome of one case in one build.
 struct Cell {
     bool stable = true;
-    std::string why;     ///< the first criterion that failed; empty when stable
-    std::string shown;   ///< the measured numbers as the table shows them
+    std::string why;                                      ///< the first criterion that failed; empty when stable
+    std::string shown;                                    ///< the measured numbers as the table shows them
     std::vector<std::pair<std::string, double>> numbers;  ///< every measured number, for the CSV
 
     void fail(const std::string& reason) {
@@ -77,8 +77,8 @@ struct Cell {
 
 /// One row of a sweep: the swept value and the two builds.
 struct Row {
-    std::string value;   ///< as shown
-    double number;       ///< as written to the CSV
+    std::string value;  ///< as shown
+    double number;      ///< as written to the CSV
     Cell f, d;
 };
 
@@ -232,8 +232,11 @@ Cell mass_case(double ratio, bool heavy_on_top) {
     });
     const Vec3<double> end = position(w, top);
     Cell c;
-    c.numbers = {{"overlap_m", overlap}, {"speed_last_second_m_s", speed_last}, {"ke_last_second_J", ke_last},
-                 {"ke_relative", ke_last / energy_scale}, {"top_y_m", end.y}};
+    c.numbers = {{"overlap_m", overlap},
+                 {"speed_last_second_m_s", speed_last},
+                 {"ke_last_second_J", ke_last},
+                 {"ke_relative", ke_last / energy_scale},
+                 {"top_y_m", end.y}};
     if (!finite) c.fail("not finite");
     else if (std::hypot(end.x, end.z) > 0.5 || end.y < 1.0) c.fail("fell off");
     else if (overlap > 0.03) c.fail("overlap");
@@ -287,7 +290,9 @@ Cell slide_case(double offset) {
     simulate(w, 3.0, [&](int, double) { finite = finite && all_finite(w); });
     const Vec3<double> end = position(w, box);
     Cell c;
-    c.numbers = {{"slide_m", end.x - start}, {"drift_z_m", end.z}, {"speed_end", static_cast<double>(length(w.body(box).linear_velocity()))}};
+    c.numbers = {{"slide_m", end.x - start},
+                 {"drift_z_m", end.z},
+                 {"speed_end", static_cast<double>(length(w.body(box).linear_velocity()))}};
     if (!finite) c.fail("not finite");
     return c;
 }
@@ -325,7 +330,8 @@ Cell glide_case(double offset) {
     simulate(w, 5.0, [&](int, double) { finite = finite && all_finite(w); });
     const double travel = position(w, box).x - start, expected = 0.05;
     Cell c;
-    c.numbers = {{"travel_m", travel}, {"error_m", travel - expected},
+    c.numbers = {{"travel_m", travel},
+                 {"error_m", travel - expected},
                  {"speed_end_m_s", static_cast<double>(length(w.body(box).linear_velocity()))}};
     if (!finite) c.fail("not finite");
     else if (std::abs(travel - expected) > 0.01 * expected) c.fail(travel == 0 ? "frozen" : "off by > 1 %");
@@ -337,7 +343,8 @@ Sweep size_sweep(bool same_mass) {
     Sweep s{same_mass ? "size" : "size_density",
             same_mass ? "Size ratio: a cube of edge s and the same mass (1000 kg) on a unit cube, 5 s"
                       : "Size ratio at the same density: a cube of edge s, mass ratio s^3, on a unit cube, 5 s",
-            "edge s (m)", {}};
+            "edge s (m)",
+            {}};
     for (double edge : {0.001, 0.003, 0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0})
         s.rows.push_back({format("%g", edge), edge, guarded([&] { return size_case<float>(edge, same_mass); }),
                           guarded([&] { return size_case<double>(edge, same_mass); })});
@@ -386,10 +393,11 @@ Sweep slide_sweep() {
 
 Sweep glide_sweep() {
     Sweep s{"glide", "Distance from the origin: a unit cube gliding at 1 cm/s on frictionless ground from x = d, 5 s (5 cm)",
-            "d (m)", {}, "right", "wrong"};
+            "d (m)", {},
+            "right", "wrong"};
     for (double d : {0.0, 1e1, 1e2, 3e2, 1e3, 3e3, 1e4, 1e5})
-        s.rows.push_back({format("%g", d), d, guarded([&] { return glide_case<float>(d); }),
-                          guarded([&] { return glide_case<double>(d); })});
+        s.rows.push_back(
+            {format("%g", d), d, guarded([&] { return glide_case<float>(d); }), guarded([&] { return glide_case<double>(d); })});
     return s;
 }
 
@@ -401,12 +409,15 @@ void print_table(const Sweep& s) {
     }
     std::printf("\n%s\n%-14s  %-*s  %s\n", s.title.c_str(), s.column.c_str(), static_cast<int>(wf), "float", "double");
     for (const Row& r : s.rows)
-        std::printf("%-14s  %-*s  %s\n", r.value.c_str(), static_cast<int>(wf), r.f.text(s.good, s.bad).c_str(), r.d.text(s.good, s.bad).c_str());
+        std::printf("%-14s  %-*s  %s\n", r.value.c_str(), static_cast<int>(wf), r.f.text(s.good, s.bad).c_str(),
+                    r.d.text(s.good, s.bad).c_str());
 }
 
 void print_markdown(const Sweep& s) {
     std::printf("\n**%s**\n\n| %s | float | double |\n|---|---|---|\n", s.title.c_str(), s.column.c_str());
-    for (const Row& r : s.rows) std::printf("| %s | %s | %s |\n", r.value.c_str(), r.f.markdown(s.good, s.bad).c_str(), r.d.markdown(s.good, s.bad).c_str());
+    for (const Row& r : s.rows)
+        std::printf("| %s | %s | %s |\n", r.value.c_str(), r.f.markdown(s.good, s.bad).c_str(),
+                    r.d.markdown(s.good, s.bad).c_str());
 }
 
 void write_csv(const std::filesystem::path& file, const Sweep& s) {
@@ -458,8 +469,12 @@ int main(int argc, char** argv) {
         const std::filesystem::path dir = std::filesystem::path(out) / "sweep";
         std::filesystem::create_directories(dir);
         std::vector<Sweep> sweeps;
-        const std::function<Sweep()> runs[] = {[] { return size_sweep(true); }, [] { return size_sweep(false); }, mass_sweep,
-                                               distance_sweep, slide_sweep, glide_sweep};
+        const std::function<Sweep()> runs[] = {[] { return size_sweep(true); },
+                                               [] { return size_sweep(false); },
+                                               mass_sweep,
+                                               distance_sweep,
+                                               slide_sweep,
+                                               glide_sweep};
         for (const auto& run : runs) {
             sweeps.push_back(run());
             print_table(sweeps.back());

@@ -142,7 +142,8 @@ int process_as(std::istream& in, std::ostream& out, std::ostream& err) {
             ++bad;
         }
     }
-    if (in.bad()) throw ReadError("reading failed after line " + std::to_string(line_number) + " (a directory or an unreadable file?)");
+    if (in.bad())
+        throw ReadError("reading failed after line " + std::to_string(line_number) + " (a directory or an unreadable file?)");
     return bad;
 }
 
@@ -299,10 +300,8 @@ PlacedShape<T> to_library(const ShapeSpec<T>& spec, const Transform<T>& format_p
     const std::vector<T>& p = spec.params;
     try {
         switch (spec.kind) {
-            case ShapeKind::box:
-                return {Box<T>(p[0], p[1], p[2]), format_pose};
-            case ShapeKind::sphere:
-                return {Sphere<T>(p[0]), format_pose};
+            case ShapeKind::box: return {Box<T>(p[0], p[1], p[2]), format_pose};
+            case ShapeKind::sphere: return {Sphere<T>(p[0]), format_pose};
             case ShapeKind::capsule:
                 local.orientation = library_to_format_axes<T>();
                 return {Capsule<T>(p[0], p[1]), format_pose * local};

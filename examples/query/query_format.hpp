@@ -81,8 +81,8 @@ enum class ShapeKind { box, sphere, capsule, cylinder, cone, hull };
 template <class T>
 struct ShapeSpec {
     ShapeKind kind = ShapeKind::sphere;
-    std::vector<T> params;       ///< box: hx hy hz; sphere: r; capsule, cylinder: r hh; cone: r h
-    std::vector<Vec3<T>> points; ///< hull: the local points (metres, format frame)
+    std::vector<T> params;        ///< box: hx hy hz; sphere: r; capsule, cylinder: r hh; cone: r h
+    std::vector<Vec3<T>> points;  ///< hull: the local points (metres, format frame)
 };
 
 /// A shape converted to the library's conventions, with the world pose of its library frame.

@@ -37,8 +37,8 @@ std::string tsv(const std::vector<std::string>& columns) {
 }
 
 /// The pair (shape_a at pos_a, quat_a) – (shape_b at pos_b, quat_b) as a line with id "p".
-std::string pair_line(const std::string& shape_a, const std::string& pos_a, const std::string& quat_a,
-                      const std::string& shape_b, const std::string& pos_b, const std::string& quat_b) {
+std::string pair_line(const std::string& shape_a, const std::string& pos_a, const std::string& quat_a, const std::string& shape_b,
+                      const std::string& pos_b, const std::string& quat_b) {
     return tsv({"p", shape_a, pos_a, quat_a, shape_b, pos_b, quat_b});
 }
 
@@ -164,8 +164,8 @@ TEST_CASE_TEMPLATE("a capsule along format z lies between two boxes at the depth
 
 TEST_CASE_TEMPLATE("a cylinder along format z stands on a box on its flat end", T, float, double) {
     // Box top at z = 0; cylinder r 0.5, hh 1 centred at z = 0.9: its bottom face at -0.1.
-    expect_hit(query_line<T>(pair_line("box 2 2 1", "0 0 -1", identity, "cylinder 0.5 1", "0 0 0.9", identity)),
-               T(0.1), Vec3<T>{T(0), T(0), T(1)});
+    expect_hit(query_line<T>(pair_line("box 2 2 1", "0 0 -1", identity, "cylinder 0.5 1", "0 0 0.9", identity)), T(0.1),
+               Vec3<T>{T(0), T(0), T(1)});
 }
 
 TEST_CASE_TEMPLATE("a cone standing on its base on a box sinks by the overlap of its base", T, float, double) {
@@ -186,8 +186,8 @@ TEST_CASE_TEMPLATE("a cone standing on its base on a box sinks by the overlap of
 
     // The library pose: origin (centre of mass) a quarter of the height above the base, h/4
     // below the format origin along format z.
-    const PlacedShape<T> placed = to_library(parse_shape<T>(cone), Transform<T>{{T(3), T(0.9), T(-2)},
-                                                                                 parse_orientation<T>(z_to_y)});
+    const PlacedShape<T> placed =
+        to_library(parse_shape<T>(cone), Transform<T>{{T(3), T(0.9), T(-2)}, parse_orientation<T>(z_to_y)});
     CHECK(near(placed.pose.position, Vec3<T>{T(3), T(0.4), T(-2)}, tolerance<T>()));
 }
 
@@ -254,8 +254,8 @@ TEST_CASE("a header on the first line is skipped, elsewhere it is a bad line") {
     CHECK(bad == 0);
     CHECK(lines_of(out).size() == 2);
     // An id that only starts with "id" is data.
-    out = run_process(tsv({"id1", "sphere 1", "0 0 0", identity, "sphere 1", "3 0 0", identity}) + "\n",
-                      Precision::double_float, err, bad);
+    out = run_process(tsv({"id1", "sphere 1", "0 0 0", identity, "sphere 1", "3 0 0", identity}) + "\n", Precision::double_float,
+                      err, bad);
     CHECK(out == "id1 0\n");
     // A header on line 2 is a bad line.
     out = run_process(good + "\n" + header + "\n", Precision::double_float, err, bad);
@@ -287,8 +287,7 @@ TEST_CASE("bad lines are reported by number and the run goes on") {
         std::string line, message;
     };
     const std::vector<Bad> cases = {
-        {tsv({"b", "sphere 1", "0 0 0", identity, "boxx 1 1 1", "0 0 0", identity}),
-         "shape B: unknown shape 'boxx'"},
+        {tsv({"b", "sphere 1", "0 0 0", identity, "boxx 1 1 1", "0 0 0", identity}), "shape B: unknown shape 'boxx'"},
         {tsv({"b", "sphere 1", "0 0 0", identity}), "expected 7 tab-separated columns"},
         {tsv({"b", "box 1 1", "0 0 0", identity, "sphere 1", "0 0 0", identity}),
          "shape A: expected 3 numbers (box hx hy hz), got 2"},
@@ -300,12 +299,10 @@ TEST_CASE("bad lines are reported by number and the run goes on") {
         {tsv({"b", "sphere 1", "0 0 0", "0 0 0 0", "sphere 1", "0 0 0", identity}), "quatA: the zero quaternion"},
         {tsv({"b", "sphere 1", "0 0 0", "1 0 0", "sphere 1", "0 0 0", identity}), "quatA: expected 4 numbers"},
         {tsv({"b", "sphere 1", "0 0 0", identity, "cylinder 1 x", "0 0 0", identity}), "shape B: 'x' is not a number"},
-        {tsv({"b", "sphere 1", "0 0 0", identity, "box 1 -1 1", "0 0 0", identity}),
-         "shape B: box hy must be > 0 (got -1)"},
+        {tsv({"b", "sphere 1", "0 0 0", identity, "box 1 -1 1", "0 0 0", identity}), "shape B: box hy must be > 0 (got -1)"},
         {tsv({"b", "sphere 0", "0 0 0", identity, "sphere 1", "0 0 0", identity}), "shape A: sphere r must be > 0"},
         {tsv({"b", "cone 1 0", "0 0 0", identity, "sphere 1", "0 0 0", identity}), "shape A: cone h must be > 0"},
-        {tsv({"b", "capsule 1 -0.5", "0 0 0", identity, "sphere 1", "0 0 0", identity}),
-         "shape A: capsule hh must be >= 0"},
+        {tsv({"b", "capsule 1 -0.5", "0 0 0", identity, "sphere 1", "0 0 0", identity}), "shape A: capsule hh must be >= 0"},
         {tsv({"b", "hull 3 0 0 0 1 0 0 0 1 0", "0 0 0", identity, "sphere 1", "0 0 0", identity}),
          "shape A: hull needs at least 4 points"},
         {tsv({"b", "hull 4 0 0 0 1 0 0 0 1 0 0 0", "0 0 0", identity, "sphere 1", "0 0 0", identity}),
@@ -347,7 +344,8 @@ TEST_CASE("regression: a NUL byte makes a bad line instead of ending it") {
     const std::string nul_only = std::string("\0", 1);
     std::string err;
     int bad = 0;
-    const std::string out = run_process(good + "\n" + nul + "\n" + nul_only + "\n" + good + "\n", Precision::double_float, err, bad);
+    const std::string out =
+        run_process(good + "\n" + nul + "\n" + nul_only + "\n" + good + "\n", Precision::double_float, err, bad);
     CHECK(bad == 2);
     CHECK(lines_of(out).size() == 2);
     const std::vector<std::string> messages = lines_of(err);
@@ -381,13 +379,12 @@ TEST_CASE("results print with the digits that round-trip the precision") {
     pd.normal = {0.0, 0.0, -1.0};
     pd.point_a = {1.0 / 3.0, 2.0, -5.5};
     pd.point_b = {1e-10, 123456789.0, -0.0};
-    CHECK(format_result("b", pd) ==
-          "b 1 0.10000000000000001 0 0 -1 0.33333333333333331 2 -5.5 1e-10 123456789 0");
+    CHECK(format_result("b", pd) == "b 1 0.10000000000000001 0 0 -1 0.33333333333333331 2 -5.5 1e-10 123456789 0");
     CHECK(format_result("c", Penetration<double>{}) == "c 0");
 
     // Every number printed by a float run reads back (strtof) as the float the query returned.
-    const std::string line = tsv({"r", "box 0.3 0.7 1.1", "0.1 0.2 0.3", "0.9 0.1 0.2 0.3", "cone 0.6 1.3", "0.4 0.5 0.9",
-                                  "0.8 -0.3 0.1 0.2"});
+    const std::string line =
+        tsv({"r", "box 0.3 0.7 1.1", "0.1 0.2 0.3", "0.9 0.1 0.2 0.3", "cone 0.6 1.3", "0.4 0.5 0.9", "0.8 -0.3 0.1 0.2"});
     const Penetration<float> f = query_line<float>(line);
     REQUIRE(f.hit);
     std::string err;
@@ -482,6 +479,7 @@ TEST_CASE("the sample file gives its expected output") {
         CHECK(g[0] == w[0]);
         CHECK(g[1] == w[1]);
         for (std::size_t k = 2; k < g.size(); ++k)
-            CHECK(std::strtod(g[k].c_str(), nullptr) == doctest::Approx(std::strtod(w[k].c_str(), nullptr)).epsilon(1e-9).scale(1));
+            CHECK(std::strtod(g[k].c_str(), nullptr) ==
+                  doctest::Approx(std::strtod(w[k].c_str(), nullptr)).epsilon(1e-9).scale(1));
     }
 }

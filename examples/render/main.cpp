@@ -51,8 +51,8 @@ bool ffmpeg_available() { return std::system("command -v ffmpeg >/dev/null 2>&1"
 bool make_videos(const fs::path& dir, const std::string& name, double fps, int width) {
     char rate[32];
     std::snprintf(rate, sizeof rate, "%g", fps);
-    const std::string input = "ffmpeg -hide_banner -loglevel error -nostdin -y -framerate " + std::string(rate) +
-                              " -i " + shell_quoted((dir / "frame_%04d.png").string());
+    const std::string input = "ffmpeg -hide_banner -loglevel error -nostdin -y -framerate " + std::string(rate) + " -i " +
+                              shell_quoted((dir / "frame_%04d.png").string());
     // GIF delays are whole hundredths of a second, and browsers slow down delays below 2/100 s.
     const std::string gif_rate = fps > 30 ? "fps=30," : "";
     const std::string gif = input + " -vf " +
@@ -116,8 +116,8 @@ struct Run {
     bool ffmpeg;
 };
 
-void write_states(std::FILE* out, const std::string& scenario, int frame, double time,
-                  const std::vector<BodyState>& states, bool use_float) {
+void write_states(std::FILE* out, const std::string& scenario, int frame, double time, const std::vector<BodyState>& states,
+                  bool use_float) {
     // Enough digits to read every value back exactly in the precision it was simulated in.
     const char* format = use_float ? "%s,%d,%.9g,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n"
                                    : "%s,%d,%.9g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n";
@@ -169,10 +169,9 @@ void run_scenario(const Run& run, const Scenario& scenario) {
     char summary[160];
     const double n = o.frames, steps = std::max(1, o.frames - 1);
     if (run.renderer)
-        std::snprintf(summary, sizeof summary, "  render %.1f ms, png %.1f ms, step %.2f ms per frame", render_ms / n,
-                      png_ms / n, step_ms / steps);
-    else
-        std::snprintf(summary, sizeof summary, "  step %.2f ms per frame", step_ms / steps);
+        std::snprintf(summary, sizeof summary, "  render %.1f ms, png %.1f ms, step %.2f ms per frame", render_ms / n, png_ms / n,
+                      step_ms / steps);
+    else std::snprintf(summary, sizeof summary, "  step %.2f ms per frame", step_ms / steps);
     std::string line = summary;
     if (run.renderer && run.ffmpeg) {
         const Clock::time_point start = Clock::now();

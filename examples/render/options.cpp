@@ -122,8 +122,7 @@ Options parse_options(int argc, const char* const* argv) {
     return o;
 }
 
-std::vector<std::string> resolve_scenarios(const std::vector<std::string>& requested,
-                                           const std::vector<std::string>& available) {
+std::vector<std::string> resolve_scenarios(const std::vector<std::string>& requested, const std::vector<std::string>& available) {
     std::vector<std::string> out;
     const auto add = [&](const std::string& name) {
         if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
@@ -143,7 +142,8 @@ std::vector<std::string> resolve_scenarios(const std::vector<std::string>& reque
 }
 
 std::string usage(const std::string& program) {
-    return "usage: " + program + " [options] [scenario ...|all]\n"
+    return "usage: " + program +
+           " [options] [scenario ...|all]\n"
            "\n"
            "Simulates each scenario and renders it off-screen (OSMesa) to\n"
            "DIR/<scenario>/frame_0000.png ...; with ffmpeg on PATH also <scenario>.gif and .mp4.\n"

@@ -41,8 +41,7 @@ Options parse_options(int argc, const char* const* argv);
 
 /// The scenario names to run, in the order given, without repeats: "all" (or no names at all)
 /// stands for every available scenario. Throws OptionsError naming the first unknown name.
-std::vector<std::string> resolve_scenarios(const std::vector<std::string>& requested,
-                                           const std::vector<std::string>& available);
+std::vector<std::string> resolve_scenarios(const std::vector<std::string>& requested, const std::vector<std::string>& available);
 
 /// The --help text, with program as the command name.
 std::string usage(const std::string& program);

@@ -195,7 +195,8 @@ TEST_CASE("write_png writes a PNG that reads back as the same image, top row fir
     const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     CHECK(std::equal(signature, signature + 8, head));
     const auto be32 = [&](int at) {
-        return (unsigned(head[at]) << 24) | (unsigned(head[at + 1]) << 16) | (unsigned(head[at + 2]) << 8) | unsigned(head[at + 3]);
+        return (unsigned(head[at]) << 24) | (unsigned(head[at + 1]) << 16) | (unsigned(head[at + 2]) << 8) |
+               unsigned(head[at + 3]);
     };
     CHECK(std::string(reinterpret_cast<const char*>(head + 12), 4) == "IHDR");
     CHECK(be32(16) == unsigned(width));

@@ -68,9 +68,9 @@ CameraBasis camera_basis(const Camera& camera) {
 /// The view matrix (world → eye; eye looks down -z) of gluLookAt.
 Mat4d view_matrix(const Camera& camera, const CameraBasis& b) {
     const f64::Vec3& p = camera.position;
-    return {b.right.x, b.up.x, -b.forward.x, 0,  //
-            b.right.y, b.up.y, -b.forward.y, 0,  //
-            b.right.z, b.up.z, -b.forward.z, 0,  //
+    return {b.right.x,        b.up.x,        -b.forward.x,      0,  //
+            b.right.y,        b.up.y,        -b.forward.y,      0,  //
+            b.right.z,        b.up.z,        -b.forward.z,      0,  //
             -dot(b.right, p), -dot(b.up, p), dot(b.forward, p), 1};
 }
 
@@ -78,10 +78,14 @@ Mat4d view_matrix(const Camera& camera, const CameraBasis& b) {
 Mat4d projection_matrix(const Camera& camera, double aspect) {
     const double f = 1.0 / std::tan(radians(camera.fov_y_degrees) / 2);
     const double n = camera.near, fa = camera.far;
-    return {f / aspect, 0, 0, 0,  //
-            0, f, 0, 0,           //
-            0, 0, (fa + n) / (n - fa), -1,  //
-            0, 0, 2 * fa * n / (n - fa), 0};
+    return {f / aspect, 0, 0,
+            0,  //
+            0,          f, 0,
+            0,  //
+            0,          0, (fa + n) / (n - fa),
+            -1,  //
+            0,          0, 2 * fa * n / (n - fa),
+            0};
 }
 
 void validate(const Camera& camera) {
@@ -344,7 +348,8 @@ struct Batch {
         std::size_t offset = 0;
         for (GLint c : components) {
             glEnableVertexAttribArray(location);
-            glVertexAttribPointer(location, c, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(stride * static_cast<GLsizei>(sizeof(float))),
+            glVertexAttribPointer(location, c, GL_FLOAT, GL_FALSE,
+                                  static_cast<GLsizei>(stride * static_cast<GLsizei>(sizeof(float))),
                                   reinterpret_cast<const void*>(offset * sizeof(float)));
             offset += static_cast<std::size_t>(c);
             ++location;
@@ -412,8 +417,7 @@ struct Renderer::Impl {
     std::array<float, 2> fog{};
 
     void make_current() {
-        if (OSMesaGetCurrentContext() != context &&
-            !OSMesaMakeCurrent(context, pixels.data(), GL_UNSIGNED_BYTE, width, height))
+        if (OSMesaGetCurrentContext() != context && !OSMesaMakeCurrent(context, pixels.data(), GL_UNSIGNED_BYTE, width, height))
             throw std::runtime_error("xeno::render::Renderer: OSMesaMakeCurrent failed");
     }
     void create_framebuffer();
@@ -514,25 +518,36 @@ void Renderer::Impl::set_common_uniforms(GLuint program) const {
 
 Renderer::Renderer(int width, int height) : impl_(std::make_unique<Impl>()) {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
-        throw std::runtime_error("xeno::render::Renderer: image size must be within 1..16384, got " +
-                                 std::to_string(width) + "x" + std::to_string(height));
+        throw std::runtime_error("xeno::render::Renderer: image size must be within 1..16384, got " + std::to_string(width) +
+                                 "x" + std::to_string(height));
     Impl& r = *impl_;
     r.width = width;
     r.height = height;
     r.pixels.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4, 0);
 
-    const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
-                              OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                              OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              24,
+                              OSMESA_STENCIL_BITS,
+                              0,
+                              OSMESA_PROFILE,
+                              OSMESA_CORE_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              3,
+                              OSMESA_CONTEXT_MINOR_VERSION,
+                              3,
+                              0};
     r.context = OSMesaCreateContextAttribs(attributes, nullptr);
     if (!r.context) r.context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);  // compatibility profile
     if (!r.context)
-        throw std::runtime_error("xeno::render::Renderer: OSMesa could not create a GL context (neither a 3.3 core "
-                                 "nor a legacy one); is libOSMesa (Mesa's llvmpipe) installed?");
+        throw std::runtime_error(
+            "xeno::render::Renderer: OSMesa could not create a GL context (neither a 3.3 core "
+            "nor a legacy one); is libOSMesa (Mesa's llvmpipe) installed?");
     try {
         if (!OSMesaMakeCurrent(r.context, r.pixels.data(), GL_UNSIGNED_BYTE, width, height))
-            throw std::runtime_error("xeno::render::Renderer: OSMesaMakeCurrent failed for a " + std::to_string(width) +
-                                     "x" + std::to_string(height) + " RGBA buffer");
+            throw std::runtime_error("xeno::render::Renderer: OSMesaMakeCurrent failed for a " + std::to_string(width) + "x" +
+                                     std::to_string(height) + " RGBA buffer");
         OSMesaPixelStore(OSMESA_Y_UP, 0);
         const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
         int major = 0;
@@ -615,8 +630,10 @@ void Renderer::begin_frame(const Camera& camera) {
     glUseProgram(r.sky);
     const double tan_y = std::tan(radians(camera.fov_y_degrees) / 2), tan_x = tan_y * aspect;
     const f64::Vec3 right = r.basis.right * tan_x, up = r.basis.up * tan_y;
-    glUniform3f(glGetUniformLocation(r.sky, "u_right"), static_cast<float>(right.x), static_cast<float>(right.y), static_cast<float>(right.z));
-    glUniform3f(glGetUniformLocation(r.sky, "u_up"), static_cast<float>(up.x), static_cast<float>(up.y), static_cast<float>(up.z));
+    glUniform3f(glGetUniformLocation(r.sky, "u_right"), static_cast<float>(right.x), static_cast<float>(right.y),
+                static_cast<float>(right.z));
+    glUniform3f(glGetUniformLocation(r.sky, "u_up"), static_cast<float>(up.x), static_cast<float>(up.y),
+                static_cast<float>(up.z));
     glUniform3f(glGetUniformLocation(r.sky, "u_forward"), static_cast<float>(r.basis.forward.x),
                 static_cast<float>(r.basis.forward.y), static_cast<float>(r.basis.forward.z));
     glBindVertexArray(r.empty_vao);
@@ -667,7 +684,7 @@ void Renderer::end_frame() {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // keeps alpha at 1
-    const f32::Vec3 light = normalized(f32::Vec3{0.3f, 0.85f, 0.45f});  // towards the light
+    const f32::Vec3 light = normalized(f32::Vec3{0.3f, 0.85f, 0.45f});                          // towards the light
     for (const Batch* batch : {&r.opaque, &r.translucent, &r.lines, &r.points}) batch->upload();
 
     // 1. Opaque triangles, pushed back a little in depth so edges on them win.
@@ -761,8 +778,7 @@ bool write_rgba_png(const char* path, int width, int height, const unsigned char
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
     png_set_filler(png, 0, PNG_FILLER_AFTER);  // rows are RGBA; the alpha byte is dropped
-    for (int y = 0; y < height; ++y)
-        png_write_row(png, rgba + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) * 4);
+    for (int y = 0; y < height; ++y) png_write_row(png, rgba + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) * 4);
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
     return std::fclose(file) == 0;

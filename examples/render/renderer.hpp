@@ -31,10 +31,10 @@ namespace xeno::render {
 
 /// A perspective camera looking from position at target; y up unless `up` says otherwise.
 struct Camera {
-    f64::Vec3 position{6, 4, 8};  ///< metres, world frame
-    f64::Vec3 target{0, 0.5, 0};  ///< metres: the point at the image centre
-    f64::Vec3 up{0, 1, 0};        ///< world direction shown as up in the image (need not be unit)
-    double fov_y_degrees = 45;    ///< vertical field of view
+    f64::Vec3 position{6, 4, 8};    ///< metres, world frame
+    f64::Vec3 target{0, 0.5, 0};    ///< metres: the point at the image centre
+    f64::Vec3 up{0, 1, 0};          ///< world direction shown as up in the image (need not be unit)
+    double fov_y_degrees = 45;      ///< vertical field of view
     double near = 0.05, far = 500;  ///< clip distances in metres, 0 < near < far
 };
 

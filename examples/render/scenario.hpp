@@ -18,16 +18,19 @@
 namespace xeno::render {
 
 /// One body's pose: position of its centre of mass (metres) and unit orientation (w, x, y, z).
-struct BodyState { int body; double x, y, z, qw, qx, qy, qz; };
+struct BodyState {
+    int body;
+    double x, y, z, qw, qx, qy, qz;
+};
 
 /// One scenario running in one precision.
 class Simulation {
 public:
     virtual ~Simulation() = default;
-    virtual void step(double seconds) = 0;                        // advance the simulation
-    virtual void draw(Renderer& out, bool contacts) const = 0;    // bodies (and contact points/normals if asked)
-    virtual std::vector<BodyState> states() const = 0;             // every body's pose, for CSV
-    virtual Camera camera() const = 0;                              // the scenario's suggested view
+    virtual void step(double seconds) = 0;                      // advance the simulation
+    virtual void draw(Renderer& out, bool contacts) const = 0;  // bodies (and contact points/normals if asked)
+    virtual std::vector<BodyState> states() const = 0;          // every body's pose, for CSV
+    virtual Camera camera() const = 0;                          // the scenario's suggested view
 };
 
 struct Scenario {

@@ -71,7 +71,8 @@ Scene build(const std::string& name, World<T>& world) {
     if (name == "hinged-door") return hinged_door(world);
     if (name == "ragdoll") return ragdoll(world);
     if (name == "compound-stack") return compound_stack(world);
-    xeno::detail::report_invalid(("xeno::scenes::build: unknown scene '" + name + "'").c_str(), "name length", static_cast<double>(name.size()));
+    xeno::detail::report_invalid(("xeno::scenes::build: unknown scene '" + name + "'").c_str(), "name length",
+                                 static_cast<double>(name.size()));
 }
 
 }  // namespace xeno::scenes

@@ -26,7 +26,8 @@ template <class T>
 std::shared_ptr<const Compound<T>> table() {
     std::vector<CompoundChild<T>> parts{{Box<T>(T(0.6), T(0.03), T(0.4)), {{T(0), T(0.73), T(0)}, Quat<T>::identity()}}};
     for (const T x : {T(-0.52), T(0.52)})
-        for (const T z : {T(-0.32), T(0.32)}) parts.push_back({Box<T>(T(0.03), T(0.35), T(0.03)), {{x, T(0.35), z}, Quat<T>::identity()}});
+        for (const T z : {T(-0.32), T(0.32)})
+            parts.push_back({Box<T>(T(0.03), T(0.35), T(0.03)), {{x, T(0.35), z}, Quat<T>::identity()}});
     return std::make_shared<const Compound<T>>(std::move(parts));
 }
 

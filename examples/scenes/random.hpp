@@ -47,11 +47,10 @@ public:
     /// Uniform random rotation (Shoemake, "Uniform random rotations", Graphics Gems III).
     template <class T>
     Quat<T> rotation() {
-        const double u1 = uniform(), u2 = 2.0 * 3.14159265358979323846 * uniform(),
-                     u3 = 2.0 * 3.14159265358979323846 * uniform();
+        const double u1 = uniform(), u2 = 2.0 * 3.14159265358979323846 * uniform(), u3 = 2.0 * 3.14159265358979323846 * uniform();
         const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-        return {static_cast<T>(a * std::sin(u2)), static_cast<T>(a * std::cos(u2)),
-                static_cast<T>(b * std::sin(u3)), static_cast<T>(b * std::cos(u3))};
+        return {static_cast<T>(a * std::sin(u2)), static_cast<T>(a * std::cos(u2)), static_cast<T>(b * std::sin(u3)),
+                static_cast<T>(b * std::cos(u3))};
     }
 
 private:

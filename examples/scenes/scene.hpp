@@ -15,8 +15,8 @@ namespace xeno::scenes {
 
 /// Bodies of interest and a suggested view (camera position and target, metres).
 struct Scene {
-    std::vector<BodyId> bodies;   ///< the scene's dynamic bodies, in creation order
-    BodyId ground;                ///< the static ground, if any (renderers draw their own floor)
+    std::vector<BodyId> bodies;  ///< the scene's dynamic bodies, in creation order
+    BodyId ground;               ///< the static ground, if any (renderers draw their own floor)
     f64::Vec3 eye{8, 5, 12};
     f64::Vec3 target{0, 1, 0};
 };

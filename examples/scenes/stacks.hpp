@@ -46,7 +46,8 @@ Scene heavy_on_light(World<T>& world) {
     Scene s;
     s.ground = add_ground(world);
     s.bodies.push_back(add_box(world, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5), T(0)}, Quat<T>::identity(), T(100)));
-    s.bodies.push_back(add_box(world, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(1.5), T(0)}, Quat<T>::identity(), T(40000)));
+    s.bodies.push_back(
+        add_box(world, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(1.5), T(0)}, Quat<T>::identity(), T(40000)));
     s.eye = {4, 3, 6};
     s.target = {0, 1, 0};
     return s;

@@ -39,9 +39,15 @@ Scene contact_kind(World<T>& world, ContactKind kind) {
     pedestal.type = BodyType::static_body;
     T pedestal_reach = T(0.5);
     switch (kind) {
-        case ContactKind::vertex_vertex: pedestal.orientation = conjugate(detail::corner_down<T>()); pedestal_reach = corner; break;
+        case ContactKind::vertex_vertex:
+            pedestal.orientation = conjugate(detail::corner_down<T>());
+            pedestal_reach = corner;
+            break;
         case ContactKind::vertex_edge:
-        case ContactKind::edge_edge: pedestal.orientation = detail::edge_down<T>(Vec3<T>::unit_z()); pedestal_reach = edge; break;
+        case ContactKind::edge_edge:
+            pedestal.orientation = detail::edge_down<T>(Vec3<T>::unit_z());
+            pedestal_reach = edge;
+            break;
         default: break;
     }
     pedestal.position = {T(0), pedestal_reach, T(0)};
@@ -53,9 +59,15 @@ Scene contact_kind(World<T>& world, ContactKind kind) {
     switch (kind) {
         case ContactKind::vertex_vertex:
         case ContactKind::vertex_edge:
-        case ContactKind::vertex_face: q = detail::corner_down<T>(); reach = corner; break;
+        case ContactKind::vertex_face:
+            q = detail::corner_down<T>();
+            reach = corner;
+            break;
         case ContactKind::edge_edge:
-        case ContactKind::edge_face: q = detail::edge_down<T>(Vec3<T>::unit_x()); reach = edge; break;
+        case ContactKind::edge_face:
+            q = detail::edge_down<T>(Vec3<T>::unit_x());
+            reach = edge;
+            break;
         case ContactKind::face_face: break;
     }
     // An offset (and for the tips a slight spin) so the cube does not balance for ever on a tip
@@ -76,9 +88,10 @@ template <class T>
 Scene seesaw(World<T>& world) {
     Scene s;
     s.ground = add_ground(world);
-    s.bodies.push_back(add_box(world, Vec3<T>{T(0.4), T(0.4), T(0.6)}, Vec3<T>{T(0), T(0.4), T(0)}));        // prism
-    s.bodies.push_back(add_box(world, Vec3<T>{T(2), T(0.05), T(0.5)}, Vec3<T>{T(0.3), T(0.85), T(0)}, Quat<T>::identity(), T(500)));  // plank
-    s.bodies.push_back(add_box(world, Vec3<T>{T(0.25), T(0.25), T(0.25)}, Vec3<T>{T(1.6), T(1.15), T(0)}));  // block
+    s.bodies.push_back(add_box(world, Vec3<T>{T(0.4), T(0.4), T(0.6)}, Vec3<T>{T(0), T(0.4), T(0)}));  // prism
+    s.bodies.push_back(
+        add_box(world, Vec3<T>{T(2), T(0.05), T(0.5)}, Vec3<T>{T(0.3), T(0.85), T(0)}, Quat<T>::identity(), T(500)));  // plank
+    s.bodies.push_back(add_box(world, Vec3<T>{T(0.25), T(0.25), T(0.25)}, Vec3<T>{T(1.6), T(1.15), T(0)}));            // block
     s.eye = {2, 2.5, 6};
     s.target = {0.3, 0.7, 0};
     return s;

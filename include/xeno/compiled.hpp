@@ -22,16 +22,16 @@
 
 /// The templates compiled once in compiled mode, for scalar T: the explicit instantiations of
 /// src/xeno_compiled.cpp (the headers hold the matching `extern` declarations).
-#define XENO_DETAIL_COMPILED_TEMPLATES(T)                                                                                    \
-    template class xeno::World<T>;                                                                                           \
-    template bool xeno::intersect<T>(const xeno::Shape<T>&, const xeno::Transform<T>&, const xeno::Shape<T>&,                \
-                                     const xeno::Transform<T>&);                                                             \
-    template xeno::Penetration<T> xeno::collide<T>(const xeno::Shape<T>&, const xeno::Transform<T>&, const xeno::Shape<T>&,  \
-                                                   const xeno::Transform<T>&);                                               \
-    template xeno::ContactManifold<T> xeno::generate_contacts<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,           \
-                                                                 const xeno::Shape<T>&, const xeno::Transform<T>&, T, T);    \
-    template std::optional<xeno::RayHit<T>> xeno::raycast<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,               \
-                                                             const xeno::Ray<T>&);                                           \
-    template xeno::ConvexHull<T> xeno::make_convex_hull<T>(const std::vector<xeno::Vec3<T>>&);                               \
-    template std::vector<std::uint8_t> xeno::save_snapshot<T>(const xeno::World<T>&);                                        \
+#define XENO_DETAIL_COMPILED_TEMPLATES(T)                                                                                   \
+    template class xeno::World<T>;                                                                                          \
+    template bool xeno::intersect<T>(const xeno::Shape<T>&, const xeno::Transform<T>&, const xeno::Shape<T>&,               \
+                                     const xeno::Transform<T>&);                                                            \
+    template xeno::Penetration<T> xeno::collide<T>(const xeno::Shape<T>&, const xeno::Transform<T>&, const xeno::Shape<T>&, \
+                                                   const xeno::Transform<T>&);                                              \
+    template xeno::ContactManifold<T> xeno::generate_contacts<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,          \
+                                                                 const xeno::Shape<T>&, const xeno::Transform<T>&, T, T);   \
+    template std::optional<xeno::RayHit<T>> xeno::raycast<T>(const xeno::Shape<T>&, const xeno::Transform<T>&,              \
+                                                             const xeno::Ray<T>&);                                          \
+    template xeno::ConvexHull<T> xeno::make_convex_hull<T>(const std::vector<xeno::Vec3<T>>&);                              \
+    template std::vector<std::uint8_t> xeno::save_snapshot<T>(const xeno::World<T>&);                                       \
     template void xeno::restore_snapshot<T>(xeno::World<T>&, const std::vector<std::uint8_t>&);

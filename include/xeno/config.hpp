@@ -25,9 +25,8 @@
 #endif
 
 #ifdef XENO_ENABLE_ASSERTS
-#define XENO_ASSERT(condition)                                                                   \
-    ((condition) ? static_cast<void>(0)                                                          \
-                 : ::xeno::detail::assert_failed(#condition, __FILE__, __LINE__))
+#define XENO_ASSERT(condition) \
+    ((condition) ? static_cast<void>(0) : ::xeno::detail::assert_failed(#condition, __FILE__, __LINE__))
 #else
 #define XENO_ASSERT(condition) static_cast<void>(0)
 #endif

@@ -125,8 +125,7 @@ void draw_box(DebugDraw<T>& out, const Box<T>& box, const Transform<T>& t, Color
     // counter-clockwise from outside (the same table as make_box_polyhedron).
     const Vec3<T>& h = box.half_extents();
     Vec3<T> corner[8];
-    for (int i = 0; i < 8; ++i)
-        corner[i] = t.apply(Vec3<T>{(i & 1) ? h.x : -h.x, (i & 2) ? h.y : -h.y, (i & 4) ? h.z : -h.z});
+    for (int i = 0; i < 8; ++i) corner[i] = t.apply(Vec3<T>{(i & 1) ? h.x : -h.x, (i & 2) ? h.y : -h.y, (i & 4) ? h.z : -h.z});
     constexpr int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     for (const auto& f : faces) {
         out.draw_triangle(corner[f[0]], corner[f[1]], corner[f[2]], fill);
@@ -201,7 +200,11 @@ void draw_shape(DebugDraw<T>& out, const Shape<T>& s, const Transform<T>& t, Col
     }
 }
 
-namespace f32 { using DebugDraw = xeno::DebugDraw<float>; }
-namespace f64 { using DebugDraw = xeno::DebugDraw<double>; }
+namespace f32 {
+using DebugDraw = xeno::DebugDraw<float>;
+}
+namespace f64 {
+using DebugDraw = xeno::DebugDraw<double>;
+}
 
 }  // namespace xeno

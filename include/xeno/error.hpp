@@ -76,32 +76,27 @@ inline std::string format_value(double value) {
 
 /// "xeno: <where>: <what> (got <value>)".
 [[noreturn]] inline void report_invalid(const char* where, const char* what, double value) {
-    report_invalid(std::string("xeno: ") + where + ": " + what + " (got " + format_value(value) +
-                   ")");
+    report_invalid(std::string("xeno: ") + where + ": " + what + " (got " + format_value(value) + ")");
 }
 
 /// Rejects a non-finite value.
 template <class T>
 void require_finite(T value, const char* where, const char* what) {
-    if (!std::isfinite(value))
-        report_invalid(where, (std::string(what) + " must be finite").c_str(),
-                       static_cast<double>(value));
+    if (!std::isfinite(value)) report_invalid(where, (std::string(what) + " must be finite").c_str(), static_cast<double>(value));
 }
 
 /// Rejects a value that is not finite and strictly positive.
 template <class T>
 void require_positive(T value, const char* where, const char* what) {
     if (!(std::isfinite(value) && value > T(0)))
-        report_invalid(where, (std::string(what) + " must be finite and > 0").c_str(),
-                       static_cast<double>(value));
+        report_invalid(where, (std::string(what) + " must be finite and > 0").c_str(), static_cast<double>(value));
 }
 
 /// Rejects a value that is not finite and >= 0.
 template <class T>
 void require_non_negative(T value, const char* where, const char* what) {
     if (!(std::isfinite(value) && value >= T(0)))
-        report_invalid(where, (std::string(what) + " must be finite and >= 0").c_str(),
-                       static_cast<double>(value));
+        report_invalid(where, (std::string(what) + " must be finite and >= 0").c_str(), static_cast<double>(value));
 }
 
 /// Rejects a shape size (metres) that is not finite and > 0, or outside
@@ -110,9 +105,10 @@ template <class T>
 void require_size(T value, const char* where, const char* what) {
     require_positive(value, where, what);
     if (value < ScalarTraits<T>::min_size || value > ScalarTraits<T>::max_size)
-        report_invalid(where, (std::string(what) + " must be within [" + format_value(ScalarTraits<T>::min_size) + ", " +
-                               format_value(ScalarTraits<T>::max_size) + "] m in this precision")
-                                  .c_str(),
+        report_invalid(where,
+                       (std::string(what) + " must be within [" + format_value(ScalarTraits<T>::min_size) + ", " +
+                        format_value(ScalarTraits<T>::max_size) + "] m in this precision")
+                           .c_str(),
                        static_cast<double>(value));
 }
 
@@ -121,16 +117,18 @@ void require_size(T value, const char* where, const char* what) {
 template <class T>
 void require_at_most(T value, T limit, const char* where, const char* what, const char* unit = "") {
     if (!(std::isfinite(value) && std::abs(value) <= limit))
-        report_invalid(where, (std::string(what) + " must be finite and within +-" + format_value(static_cast<double>(limit)) + unit)
-                                  .c_str(),
-                       static_cast<double>(value));
+        report_invalid(
+            where,
+            (std::string(what) + " must be finite and within +-" + format_value(static_cast<double>(limit)) + unit).c_str(),
+            static_cast<double>(value));
 }
 
 /// Rejects an integer count outside [low, high].
 inline void require_count(int value, int low, int high, const char* where, const char* what) {
     if (value < low || value > high)
-        report_invalid(where, (std::string(what) + " must be within [" + std::to_string(low) + ", " + std::to_string(high) + "]").c_str(),
-                       static_cast<double>(value));
+        report_invalid(
+            where, (std::string(what) + " must be within [" + std::to_string(low) + ", " + std::to_string(high) + "]").c_str(),
+            static_cast<double>(value));
 }
 
 /// Rejects a vector with a non-finite component, naming the first one: "position.y must be

@@ -117,8 +117,8 @@ TEST_CASE_TEMPLATE("all broad phases report the same pairs on random scenes", T,
     CHECK(most_columns > 1);
 }
 
-TEST_CASE_TEMPLATE("sweep and prune over many columns agrees with brute force, boxes on cell borders included", T,
-                   float, double) {
+TEST_CASE_TEMPLATE("sweep and prune over many columns agrees with brute force, boxes on cell borders included", T, float,
+                   double) {
     // 3000 boxes on a 1/64 grid: many columns, and box sides that fall exactly on the column
     // borders (cells are whole multiples of the grid in these scenes often enough to matter).
     for (std::uint64_t seed = 11; seed <= 13; ++seed) {
@@ -136,8 +136,8 @@ TEST_CASE_TEMPLATE("sweep and prune over many columns agrees with brute force, b
     }
 }
 
-TEST_CASE_TEMPLATE("the broad phases agree over frames of small moves with slots emptied, reused, added and dropped", T,
-                   float, double) {
+TEST_CASE_TEMPLATE("the broad phases agree over frames of small moves with slots emptied, reused, added and dropped", T, float,
+                   double) {
     scenes::Random rng(77);
     std::vector<Aabb<T>> boxes = random_scene<T>(5, 300, 20.0);
     SweepAndPrune<T> sap;
@@ -167,8 +167,8 @@ TEST_CASE_TEMPLATE("the broad phases agree over frames of small moves with slots
     CHECK(tree.reinsertions() < moves / 2);
 }
 
-TEST_CASE_TEMPLATE("the tree stays valid and shallow under inserts, removes and moves, and queries its fat boxes",
-                   T, float, double) {
+TEST_CASE_TEMPLATE("the tree stays valid and shallow under inserts, removes and moves, and queries its fat boxes", T, float,
+                   double) {
     scenes::Random rng(2024);
     AabbTree<T> tree(T(0.05));
     std::vector<Aabb<T>> fat(600);  // what the tree should hold; empty = absent

@@ -39,7 +39,7 @@ TEST_CASE_TEMPLATE("refinement snaps a slightly tilted resting contact to the fa
         const Penetration<T> p = collide(slab, at(T(0), T(0), T(0)), cube, tb);
         REQUIRE(p.hit);
         REQUIRE(raw.hit);
-        CHECK(p.normal == Vec3<T>::unit_y());  // exactly the face normal
+        CHECK(p.normal == Vec3<T>::unit_y());   // exactly the face normal
         CHECK(p.depth <= raw.depth + T(1e-3));  // face axes win within a slack
         const SeparatingAxis<T> exact = separating_axis(slab_box, at(T(0), T(0), T(0)), cube_box, tb);
         CHECK(near(p.depth, exact.depth, T(1e-5)));
@@ -69,9 +69,11 @@ TEST_CASE_TEMPLATE("refined depth is never below the exact minimum and is closer
     }
     REQUIRE(mpr_ratio.size() > 1000);
     MESSAGE("depth / exact minimum, MPR:     median " << quantile(mpr_ratio, 0.5) << " p90 " << quantile(mpr_ratio, 0.9)
-            << " p99 " << quantile(mpr_ratio, 0.99) << " max " << quantile(mpr_ratio, 1.0));
+                                                      << " p99 " << quantile(mpr_ratio, 0.99) << " max "
+                                                      << quantile(mpr_ratio, 1.0));
     MESSAGE("depth / exact minimum, refined: median " << quantile(refined_ratio, 0.5) << " p90 " << quantile(refined_ratio, 0.9)
-            << " p99 " << quantile(refined_ratio, 0.99) << " max " << quantile(refined_ratio, 1.0));
+                                                      << " p99 " << quantile(refined_ratio, 0.99) << " max "
+                                                      << quantile(refined_ratio, 1.0));
     CHECK(quantile(refined_ratio, 0.9) <= quantile(mpr_ratio, 0.9));
     CHECK(quantile(refined_ratio, 0.5) < T(1.001));
 }
@@ -89,8 +91,9 @@ TEST_CASE_TEMPLATE("a box resting on a box gets four points at once", T, float, 
         CHECK(near(m.points[i].point_b.y, T(0.49), T(1e-5)));
     }
     // Offset and turned: the contact patch is the overlap of the two squares, clipped.
-    const ContactManifold<T> o = generate_contacts(cube, at(T(0), T(0), T(0)), cube,
-                                                   at(T(0.6), T(0.98), T(0), Quat<T>::from_axis_angle(Vec3<T>::unit_y(), T(0.3))), T(0.02));
+    const ContactManifold<T> o =
+        generate_contacts(cube, at(T(0), T(0), T(0)), cube,
+                          at(T(0.6), T(0.98), T(0), Quat<T>::from_axis_angle(Vec3<T>::unit_y(), T(0.3))), T(0.02));
     REQUIRE(o.count == 4);
     for (int i = 0; i < 4; ++i) {
         CHECK(near(o.points[i].depth, T(0.02), T(1e-5)));
@@ -118,7 +121,8 @@ TEST_CASE_TEMPLATE("round and flat shapes on a box get the manifold their shape 
     CHECK(near(s.points[0].depth, T(0.01), T(1e-3)));
     CHECK(near(s.points[0].point_b, Vec3<T>{T(1), T(0.49), T(2)}, T(1e-3)));
     // Cylinder standing on its cap: four points on the rim.
-    const ContactManifold<T> c = generate_contacts(ground, origin, Shape<T>(Cylinder<T>(T(0.4), T(0.5))), at(T(0), T(0.99), T(0)), T(0.02));
+    const ContactManifold<T> c =
+        generate_contacts(ground, origin, Shape<T>(Cylinder<T>(T(0.4), T(0.5))), at(T(0), T(0.99), T(0)), T(0.02));
     REQUIRE(c.count == 4);
     for (int i = 0; i < 4; ++i) {
         CHECK(near(c.points[i].depth, T(0.01), T(1e-4)));
@@ -126,34 +130,39 @@ TEST_CASE_TEMPLATE("round and flat shapes on a box get the manifold their shape 
     }
     // Capsule lying flat: two points at the segment's ends.
     const Quat<T> flat = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), ScalarTraits<T>::pi / 2);
-    const ContactManifold<T> k = generate_contacts(ground, origin, Shape<T>(Capsule<T>(T(0.3), T(0.6))), at(T(0), T(0.79), T(0), flat), T(0.02));
+    const ContactManifold<T> k =
+        generate_contacts(ground, origin, Shape<T>(Capsule<T>(T(0.3), T(0.6))), at(T(0), T(0.79), T(0), flat), T(0.02));
     REQUIRE(k.count == 2);
     CHECK(near(std::abs(k.points[0].point_b.x), T(0.6), T(1e-3)));
     CHECK(near(std::abs(k.points[1].point_b.x), T(0.6), T(1e-3)));
     CHECK(near(k.points[0].depth, T(0.01), T(1e-3)));
     // Cylinder lying on its side: a line contact, two points.
-    const ContactManifold<T> side = generate_contacts(ground, origin, Shape<T>(Cylinder<T>(T(0.4), T(0.5))), at(T(0), T(0.89), T(0), flat), T(0.02));
+    const ContactManifold<T> side =
+        generate_contacts(ground, origin, Shape<T>(Cylinder<T>(T(0.4), T(0.5))), at(T(0), T(0.89), T(0), flat), T(0.02));
     CHECK(side.count == 2);
     // Cone on its base: four rim points.
-    const ContactManifold<T> cone = generate_contacts(ground, origin, Shape<T>(Cone<T>(T(0.5), T(1))), at(T(0), T(0.74), T(0)), T(0.02));
+    const ContactManifold<T> cone =
+        generate_contacts(ground, origin, Shape<T>(Cone<T>(T(0.5), T(1))), at(T(0), T(0.74), T(0)), T(0.02));
     CHECK(cone.count == 4);
 }
 
 TEST_CASE_TEMPLATE("crossed edges give a single contact at the crossing", T, float, double) {
     const Shape<T> cube = Box<T>(T(0.5), T(0.5), T(0.5));
     const T reach = std::sqrt(T(0.5));
-    const ContactManifold<T> m = generate_contacts(cube, at(T(0), T(0), T(0), Quat<T>::from_axis_angle(Vec3<T>::unit_z(), ScalarTraits<T>::pi / 4)), cube,
-                                                   at(T(0), T(2) * reach - T(0.02), T(0), Quat<T>::from_axis_angle(Vec3<T>::unit_x(), ScalarTraits<T>::pi / 4)), T(0.02));
+    const ContactManifold<T> m = generate_contacts(
+        cube, at(T(0), T(0), T(0), Quat<T>::from_axis_angle(Vec3<T>::unit_z(), ScalarTraits<T>::pi / 4)), cube,
+        at(T(0), T(2) * reach - T(0.02), T(0), Quat<T>::from_axis_angle(Vec3<T>::unit_x(), ScalarTraits<T>::pi / 4)), T(0.02));
     REQUIRE(m.count == 1);
     CHECK(near(m.normal, Vec3<T>::unit_y(), T(1e-3)));
     CHECK(near(m.points[0].depth, T(0.02), T(1e-3)));
     CHECK(near(m.points[0].point_a, Vec3<T>{T(0), reach, T(0)}, T(1e-2)));
 }
 
-TEST_CASE_TEMPLATE("manifolds from random pairs are finite, unit-normal and never deeper than the refined depth", T, float, double) {
+TEST_CASE_TEMPLATE("manifolds from random pairs are finite, unit-normal and never deeper than the refined depth", T, float,
+                   double) {
     scenes::Random rng(33);
-    const Shape<T> shapes[] = {Box<T>(T(0.5), T(0.3), T(0.7)), Sphere<T>(T(0.4)), Capsule<T>(T(0.25), T(0.5)),
-                               Cylinder<T>(T(0.4), T(0.4)), Cone<T>(T(0.5), T(1)), make_regular_prism(5, T(0.5), T(0.4))};
+    const Shape<T> shapes[] = {Box<T>(T(0.5), T(0.3), T(0.7)), Sphere<T>(T(0.4)),     Capsule<T>(T(0.25), T(0.5)),
+                               Cylinder<T>(T(0.4), T(0.4)),    Cone<T>(T(0.5), T(1)), make_regular_prism(5, T(0.5), T(0.4))};
     int contacts = 0;
     for (int k = 0; k < 4000; ++k) {
         const Shape<T>& a = shapes[rng.index(6)];

@@ -72,7 +72,8 @@ TEST_CASE_TEMPLATE("regression: a 1 m box overlapping a 30 m box gets its contac
         const Transform<T> small_pose{{rng.uniform(T(-14), T(14)), T(2.4), rng.uniform(T(-14), T(14))},
                                       Quat<T>::from_axis_angle(Vec3<T>::unit_y(), rng.uniform(T(0), T(3)))};
         for (const bool small_first : {true, false}) {
-            const Penetration<T> p = small_first ? collide(small, small_pose, big, big_pose) : collide(big, big_pose, small, small_pose);
+            const Penetration<T> p =
+                small_first ? collide(small, small_pose, big, big_pose) : collide(big, big_pose, small, small_pose);
             REQUIRE(p.hit);
             CHECK(test::near(p.depth, T(0.1), T(1e-4)));
             const Vec3<T>& on_small = small_first ? p.point_a : p.point_b;
@@ -100,9 +101,9 @@ TEST_CASE_TEMPLATE("face, edge and round contacts get both points exactly on the
     const Case cases[] = {
         {Sphere<T>(T(0.5)), {{T(1), T(0.99), T(2)}, Quat<T>::identity()}, T(0.01)},
         {Cylinder<T>(T(0.4), T(0.5)), {{T(-2), T(0.98), T(1)}, Quat<T>::identity()}, T(0.02)},  // on its cap
-        {Cylinder<T>(T(0.4), T(0.5)), {{T(3), T(0.89), T(0)}, flat}, T(0.01)},                // on its side
-        {Cone<T>(T(0.5), T(1)), {{T(0), T(0.74), T(-3)}, Quat<T>::identity()}, T(0.01)},      // on its base
-        {Capsule<T>(T(0.3), T(0.6)), {{T(0.5), T(0.79), T(0.5)}, flat}, T(0.01)},             // lying flat
+        {Cylinder<T>(T(0.4), T(0.5)), {{T(3), T(0.89), T(0)}, flat}, T(0.01)},                  // on its side
+        {Cone<T>(T(0.5), T(1)), {{T(0), T(0.74), T(-3)}, Quat<T>::identity()}, T(0.01)},        // on its base
+        {Capsule<T>(T(0.3), T(0.6)), {{T(0.5), T(0.79), T(0.5)}, flat}, T(0.01)},               // lying flat
         {Box<T>(T(0.5), T(0.5), T(0.5)), {{T(4), T(0.5) + std::sqrt(T(0.5)) - T(0.02), T(4)}, edge_down}, T(0.02)},  // on an edge
     };
     for (const Case& c : cases) {
@@ -113,7 +114,8 @@ TEST_CASE_TEMPLATE("face, edge and round contacts get both points exactly on the
         CHECK(std::abs(surface_gap(ground, origin, p.point_a)) <= tol);
         CHECK(std::abs(surface_gap(c.shape, c.pose, p.point_b)) <= tol);
         // Under the body, not at a corner of the ground.
-        CHECK(length(Vec3<T>{p.point_b.x - c.pose.position.x, T(0), p.point_b.z - c.pose.position.z}) <= bounding_radius(c.shape));
+        CHECK(length(Vec3<T>{p.point_b.x - c.pose.position.x, T(0), p.point_b.z - c.pose.position.z}) <=
+              bounding_radius(c.shape));
         CHECK(test::near(p.point_a - p.point_b, p.normal * p.depth, T(1e-5)));
     }
 }
@@ -122,9 +124,10 @@ TEST_CASE_TEMPLATE("collide() contact points lie on or inside their own shapes w
                    double) {
     // Every shape kind, sizes 0.1 … 10 m, so the two shapes differ by up to 100 times.
     const test::ContractResult r = test::check_contract<T>(61, kPairs, 0.1, 10.0);
-    MESSAGE(r.hits << " overlapping pairs, " << r.violations << " with a point outside its shape by more than the depth + 1e-4 of the size; "
-                   << "worst (outside − depth) / size " << r.worst_excess << " (" << r.worst_pair << "), worst |pa − pb − depth n| / size "
-                   << r.worst_offset);
+    MESSAGE(r.hits << " overlapping pairs, " << r.violations
+                   << " with a point outside its shape by more than the depth + 1e-4 of the size; "
+                   << "worst (outside − depth) / size " << r.worst_excess << " (" << r.worst_pair
+                   << "), worst |pa − pb − depth n| / size " << r.worst_offset);
     CHECK(r.hits > kPairs / 4);
     CHECK(r.violations == 0);
     CHECK(r.worst_offset <= 1e-4);

@@ -28,8 +28,8 @@ constexpr int kPairs = 2000;
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("regression (issue 12): crossed cylinders hit off-centre report 2r - d, where MPR's oblique ray reports more", T, float,
-                   double) {
+TEST_CASE_TEMPLATE("regression (issue 12): crossed cylinders hit off-centre report 2r - d, where MPR's oblique ray reports more",
+                   T, float, double) {
     // Two long cylinders of radius r, axes along x and z, apart by d along y: the least depth is
     // 2r − d along y wherever they cross. B's centre is moved along its own axis and A's, so the
     // centre line (MPR's ray) is oblique and MPR's portal normal tilts.
@@ -56,8 +56,8 @@ TEST_CASE_TEMPLATE("regression (issue 12): crossed cylinders hit off-centre repo
     CHECK(mpr_too_deep >= 4);  // what the expansion corrects (MPR alone: 5 of the 9 more than 5 % too deep)
 }
 
-TEST_CASE_TEMPLATE("the expansion from MPR's tetrahedron brackets the least depth of two spheres (no closed form involved)", T, float,
-                   double) {
+TEST_CASE_TEMPLATE("the expansion from MPR's tetrahedron brackets the least depth of two spheres (no closed form involved)", T,
+                   float, double) {
     // Sphere–sphere through MinkowskiDifference directly, so neither collide()'s closed form nor
     // the face refinement takes part: D is a sphere of radius ra + rb about the centre offset, and
     // the least depth is ra + rb − |offset|.
@@ -85,11 +85,12 @@ TEST_CASE_TEMPLATE("the expansion from MPR's tetrahedron brackets the least dept
     }
 }
 
-TEST_CASE_TEMPLATE("regression (issue 12): 2,000 random MPR pairs, depth within 1 % of the least depth over all directions", T, float,
-                   double) {
+TEST_CASE_TEMPLATE("regression (issue 12): 2,000 random MPR pairs, depth within 1 % of the least depth over all directions", T,
+                   float, double) {
     const test::DepthResult r = test::check_depth<T>(73, kPairs, 0.5, 10.0);
-    MESSAGE("depth / least depth:\n" << test::depth_table(r) << "shallow pairs: worst (depth - least) / size " << r.worst_shallow
-                                     << "; below the reference: " << r.below << " (lowest ratio " << r.lowest << ")");
+    MESSAGE("depth / least depth:\n"
+            << test::depth_table(r) << "shallow pairs: worst (depth - least) / size " << r.worst_shallow
+            << "; below the reference: " << r.below << " (lowest ratio " << r.lowest << ")");
     CHECK(r.all.size() > static_cast<std::size_t>(kPairs / 3));
     CHECK(r.below <= static_cast<int>(r.all.size() / 100));  // the dense search may stay a little high
     CHECK(test::quantile_of(r.all, 0.99) <= 1.0102);
@@ -97,7 +98,8 @@ TEST_CASE_TEMPLATE("regression (issue 12): 2,000 random MPR pairs, depth within 
     CHECK(r.worst_shallow <= 2e-4);
 }
 
-TEST_CASE_TEMPLATE("regression (issue 12): a world's contact of deep crossed cylinders has the least depth, not MPR's", T, float, double) {
+TEST_CASE_TEMPLATE("regression (issue 12): a world's contact of deep crossed cylinders has the least depth, not MPR's", T, float,
+                   double) {
     // The crossed cylinders of the first test, B dynamic and weightless and hit near both ends,
     // in a world with default settings: the manifold built in the first step (from the poses
     // before it) has its deepest point at 2r − d = 0.3 m along ±y. Before the expansion the world
@@ -151,18 +153,20 @@ void expand_checking_links(const A& a, const Transform<typename A::scalar_type>&
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("regression: a needle cylinder through a flat capsule keeps the polytope linked (fuzzer, CI of b15ee16)", T, float,
-                   double) {
+TEST_CASE_TEMPLATE("regression: a needle cylinder through a flat capsule keeps the polytope linked (fuzzer, CI of b15ee16)", T,
+                   float, double) {
     // Found by the narrow-phase fuzzer: a cylinder 1 cm thick and 20 km long through a capsule of
     // radius 1.87 m, centres 3e-14 m apart. Round-off pinched an expansion's horizon (one vertex
     // met twice), the fan was linked as if it were one loop, one face kept unset neighbours, and
     // the next expansion indexed the face array at 13,622 of 124 (UBSan).
     const Cylinder<T> cylinder(T(0.0053117782119231462), T(10000));
     const Capsule<T> capsule(T(1.8659295778634755), T(0.0014990729391848809));
-    const Transform<double> pose_a_double{{-195.92667231953186, -145.21690759262015, 126.24037120503566},
-                                          {0.44907407586763975, -0.41476097965844971, -0.55960066303409095, -0.55960066303409095}};
-    const Transform<double> pose_b_double{{-195.92667231953186, -145.21690759262017, 126.24037120503564},
-                                          {-0.62044996523507168, -0.044934114613123521, -0.61786479665438931, 0.48090109070261344}};
+    const Transform<double> pose_a_double{
+        {-195.92667231953186, -145.21690759262015, 126.24037120503566},
+        {0.44907407586763975, -0.41476097965844971, -0.55960066303409095, -0.55960066303409095}};
+    const Transform<double> pose_b_double{
+        {-195.92667231953186, -145.21690759262017, 126.24037120503564},
+        {-0.62044996523507168, -0.044934114613123521, -0.61786479665438931, 0.48090109070261344}};
     const Transform<T> pose_a = pose_a_double.cast<T>(), pose_b = pose_b_double.cast<T>();
     expand_checking_links(cylinder, pose_a, capsule, pose_b);
     expand_checking_links(capsule, pose_b, cylinder, pose_a);

@@ -54,8 +54,8 @@ TEST_CASE_TEMPLATE("face-face: a cube resting into another reports the overlap a
     REQUIRE(p.hit);
     CHECK(near(p.depth, delta, tolerance<T>()));
     CHECK(near(p.normal, Vec3<T>::unit_y(), tolerance<T>()));
-    CHECK(near(p.point_a.y, T(0.5), tolerance<T>()));           // A's top face
-    CHECK(near(p.point_b.y, T(0.5) - delta, tolerance<T>()));   // B's bottom face
+    CHECK(near(p.point_a.y, T(0.5), tolerance<T>()));          // A's top face
+    CHECK(near(p.point_b.y, T(0.5) - delta, tolerance<T>()));  // B's bottom face
     CHECK(mpr_intersect(cube, at(T(0), T(0), T(0)), cube, at(T(0.2), T(1) - delta, T(0.1))));
 }
 
@@ -74,7 +74,8 @@ TEST_CASE_TEMPLATE("vertex-face: a corner pressed into a face", T, float, double
 TEST_CASE_TEMPLATE("edge-face: an edge pressed into a face", T, float, double) {
     const Box<T> cube(T(0.5), T(0.5), T(0.5));
     const T delta = T(0.03), reach = std::sqrt(T(0.5));  // centre to edge
-    const Penetration<T> p = mpr_penetration(cube, at(T(0), T(0), T(0)), cube, at(T(0), T(0.5) + reach - delta, T(0), edge_down_along_z<T>()));
+    const Penetration<T> p =
+        mpr_penetration(cube, at(T(0), T(0), T(0)), cube, at(T(0), T(0.5) + reach - delta, T(0), edge_down_along_z<T>()));
     REQUIRE(p.hit);
     CHECK(near(p.depth, delta, tolerance<T>()));
     CHECK(near(p.normal, Vec3<T>::unit_y(), tolerance<T>()));
@@ -104,8 +105,8 @@ TEST_CASE_TEMPLATE("vertex-edge and vertex-vertex: depth equals the exact minimu
     // Vertex-vertex: A's corner up, B's corner down, tips overlapping by delta.
     const Transform<T> a_corner = at(T(0), T(0), T(0), conjugate(corner_down<T>()));
     const Transform<T> b_corner2 = at(T(0), T(2) * tip - delta, T(0), corner_down<T>());
-    for (const auto& [pa, pb, tip_point] :
-         {std::tuple{a_edge, b_corner, Vec3<T>{T(0), reach - delta, T(0.1)}}, std::tuple{a_corner, b_corner2, Vec3<T>{T(0), tip - delta, T(0)}}}) {
+    for (const auto& [pa, pb, tip_point] : {std::tuple{a_edge, b_corner, Vec3<T>{T(0), reach - delta, T(0.1)}},
+                                            std::tuple{a_corner, b_corner2, Vec3<T>{T(0), tip - delta, T(0)}}}) {
         const Penetration<T> p = mpr_penetration(cube, pa, cube, pb);
         REQUIRE(p.hit);
         const SeparatingAxis<T> exact = separating_axis(cube, pa, cube, pb);
@@ -124,7 +125,8 @@ TEST_CASE_TEMPLATE("sphere-sphere gives the exact depth, normal and surface poin
         const Vec3<T> dir = rng.direction<T>();
         const T gap = rng.uniform(T(0.05), T(1.45));  // centre distance < 1.5
         const Vec3<T> ca = rng.in_box(Vec3<T>{T(3), T(3), T(3)});
-        const Penetration<T> p = mpr_penetration(a, Transform<T>{ca, rng.rotation<T>()}, b, Transform<T>{ca + dir * gap, rng.rotation<T>()});
+        const Penetration<T> p =
+            mpr_penetration(a, Transform<T>{ca, rng.rotation<T>()}, b, Transform<T>{ca + dir * gap, rng.rotation<T>()});
         REQUIRE(p.hit);
         const T eps = std::is_same_v<T, float> ? T(2e-3) : T(1e-4);
         CHECK(near(p.depth, T(1.5) - gap, eps));
@@ -151,8 +153,9 @@ TEST_CASE_TEMPLATE("sphere on a box face and capsules side by side have closed-f
     CHECK(near(c.depth, T(0.1), T(1e-3)));
     CHECK(near(c.normal, Vec3<T>::unit_z(), T(1e-2)));
     // Crossed at 90°, one above the other: depth 0.6 - 0.5.
-    const Penetration<T> x = mpr_penetration(cap, at(T(0), T(0), T(0), along_x), cap,
-                                             at(T(0.2), T(0.5), T(0.1), Quat<T>::from_axis_angle(Vec3<T>::unit_x(), ScalarTraits<T>::pi / 2)));
+    const Penetration<T> x =
+        mpr_penetration(cap, at(T(0), T(0), T(0), along_x), cap,
+                        at(T(0.2), T(0.5), T(0.1), Quat<T>::from_axis_angle(Vec3<T>::unit_x(), ScalarTraits<T>::pi / 2)));
     REQUIRE(x.hit);
     CHECK(near(x.depth, T(0.1), T(1e-3)));
     CHECK(near(x.normal, Vec3<T>::unit_y(), T(1e-2)));
@@ -197,8 +200,8 @@ TEST_CASE_TEMPLATE("the origin on a portal edge or face (libccd issue 25)", T, f
     CHECK(near(p.normal, Vec3<T>::unit_z(), tolerance<T>()));
     for (const T angle : {T(1e-6), T(-1e-6), T(1e-3)}) {
         for (int axis = 0; axis < 3; ++axis) {
-            const Penetration<T> r = mpr_penetration(cube, at(T(0), T(0), T(0)), cube,
-                                                     at(T(0), T(0), T(1.9), Quat<T>::from_axis_angle(Vec3<T>::axis(axis), angle)));
+            const Penetration<T> r = mpr_penetration(
+                cube, at(T(0), T(0), T(0)), cube, at(T(0), T(0), T(1.9), Quat<T>::from_axis_angle(Vec3<T>::axis(axis), angle)));
             REQUIRE(r.hit);
             CHECK(r.normal.z > T(0.99));  // continuous: no flip to a side face
             CHECK(near(r.depth, T(0.1), T(3e-3)));
@@ -255,7 +258,8 @@ TEST_CASE_TEMPLATE("a hull whose points lie far from its local origin still give
     std::vector<Vec3<T>> v;
     for (const Vec3<T>& p : unit.vertices()) v.push_back(p + Vec3<T>{T(10.5), T(0), T(0)});
     std::vector<std::vector<std::uint32_t>> faces;
-    for (const auto& f : unit.faces()) faces.emplace_back(unit.face_indices().begin() + f.first, unit.face_indices().begin() + f.first + f.count);
+    for (const auto& f : unit.faces())
+        faces.emplace_back(unit.face_indices().begin() + f.first, unit.face_indices().begin() + f.first + f.count);
     const ConvexPolyhedron<T> far_hull(v, faces);
     const Box<T> cube(T(0.5), T(0.5), T(0.5));
     // A partner near the origin, clear of the hull: the thesis's choice of centres (the body
@@ -272,8 +276,8 @@ TEST_CASE_TEMPLATE("a hull whose points lie far from its local origin still give
 
 TEST_CASE_TEMPLATE("swapping A and B flips the normal and keeps the depth", T, float, double) {
     scenes::Random rng(22);
-    const Shape<T> shapes[] = {Box<T>(T(0.5), T(0.3), T(0.7)), Sphere<T>(T(0.4)), Capsule<T>(T(0.25), T(0.5)),
-                               Cylinder<T>(T(0.4), T(0.4)), Cone<T>(T(0.5), T(1)), make_regular_prism(5, T(0.5), T(0.4))};
+    const Shape<T> shapes[] = {Box<T>(T(0.5), T(0.3), T(0.7)), Sphere<T>(T(0.4)),     Capsule<T>(T(0.25), T(0.5)),
+                               Cylinder<T>(T(0.4), T(0.4)),    Cone<T>(T(0.5), T(1)), make_regular_prism(5, T(0.5), T(0.4))};
     int hits = 0;
     for (int k = 0; k < 3000; ++k) {
         const Shape<T>& sa = shapes[rng.index(6)];
@@ -394,7 +398,8 @@ TEST_CASE_TEMPLATE("regression: the portal collapsing while refining never divid
     }
 }
 
-TEST_CASE_TEMPLATE("regression: nearly face-aligned boxes get a penetration direction that points the right way", T, float, double) {
+TEST_CASE_TEMPLATE("regression: nearly face-aligned boxes get a penetration direction that points the right way", T, float,
+                   double) {
     const Box<T> a(T(0.5), T(0.5), T(0.5)), b(T(0.5), T(0.5), T(0.5));
     scenes::Random rng(26);
     for (int k = 0; k < 200; ++k) {
@@ -412,7 +417,8 @@ TEST_CASE_TEMPLATE("regression: a small box on a 25 times larger one gets its co
     scenes::Random rng(27);
     for (int k = 0; k < 200; ++k) {
         const Vec3<T> spot{rng.uniform(T(-2.3), T(2.3)), T(2.5), rng.uniform(T(-2.3), T(2.3))};
-        const Transform<T> ts{spot + Vec3<T>{T(0), T(0.09), T(0)}, Quat<T>::from_axis_angle(Vec3<T>::unit_y(), rng.uniform(T(0), T(3)))};
+        const Transform<T> ts{spot + Vec3<T>{T(0), T(0.09), T(0)},
+                              Quat<T>::from_axis_angle(Vec3<T>::unit_y(), rng.uniform(T(0), T(3)))};
         const Penetration<T> p = mpr_penetration(big, at(T(0), T(0), T(0)), small, ts);
         REQUIRE(p.hit);
         CHECK(near(p.depth, T(0.01), T(1e-3)));
@@ -426,8 +432,11 @@ TEST_CASE_TEMPLATE("a non-finite pose is rejected before the query runs", T, flo
     const Box<T> cube(T(0.5), T(0.5), T(0.5));
     const T nan = std::numeric_limits<T>::quiet_NaN();
     CHECK_THROWS_AS(mpr_penetration(cube, at(nan, T(0), T(0)), cube, at(T(0), T(0), T(0))), InvalidArgument);
-    CHECK_THROWS_AS(mpr_intersect(cube, at(T(0), T(0), T(0)), cube, Transform<T>{Vec3<T>::zero(), Quat<T>{T(0), T(0), T(0), T(0)}}), InvalidArgument);
-    CHECK_THROWS_AS(mpr_intersect(cube, at(T(0), std::numeric_limits<T>::infinity(), T(0)), cube, at(T(0), T(0), T(0))), InvalidArgument);
+    CHECK_THROWS_AS(
+        mpr_intersect(cube, at(T(0), T(0), T(0)), cube, Transform<T>{Vec3<T>::zero(), Quat<T>{T(0), T(0), T(0), T(0)}}),
+        InvalidArgument);
+    CHECK_THROWS_AS(mpr_intersect(cube, at(T(0), std::numeric_limits<T>::infinity(), T(0)), cube, at(T(0), T(0), T(0))),
+                    InvalidArgument);
 }
 
 TEST_CASE("regression: two resting spheres whose portal degenerates get the shallow depth, not a stale portal's") {

@@ -37,8 +37,8 @@ double quantile(std::vector<double> v, double q) {
 struct Comparison {
     int pairs = 0, double_hits = 0;
     int collide_differs = 0, intersect_differs = 0;
-    double deepest_difference = 0;   // fraction of size: the depth of the pair where the booleans differ
-    double widest_gap = 0;           // fraction of size: the largest |gap| of a near-touching pair where they differ
+    double deepest_difference = 0;      // fraction of size: the depth of the pair where the booleans differ
+    double widest_gap = 0;              // fraction of size: the largest |gap| of a near-touching pair where they differ
     std::vector<double> depth_error;    // |d_float − d_double| / size where both collide() hit
     std::vector<double> shallow_error;  // the same where the double depth is below 1 % of the size
 };
@@ -84,14 +84,14 @@ Comparison compare(test::RandomPairs& pairs, int count) {
 TEST_CASE("float and double agree on random pairs: booleans never differ, shallow depths within 2e-4 of the size") {
     test::RandomPairs pairs(43, 0.1, 10.0, 10.0);
     const Comparison r = compare(pairs, kPairs);
-    const double p50 = quantile(r.depth_error, 0.5), p99 = quantile(r.depth_error, 0.99),
-                 p999 = quantile(r.depth_error, 0.999), worst = quantile(r.depth_error, 1.0);
+    const double p50 = quantile(r.depth_error, 0.5), p99 = quantile(r.depth_error, 0.99), p999 = quantile(r.depth_error, 0.999),
+                 worst = quantile(r.depth_error, 1.0);
     const double shallow_p99 = quantile(r.shallow_error, 0.99), shallow_worst = quantile(r.shallow_error, 1.0);
     MESSAGE("random pairs: " << r.pairs << ", double hits " << r.double_hits << "; boolean differs: collide() "
                              << r.collide_differs << " times, intersect() " << r.intersect_differs
                              << "; |depth_f - depth_d| / size: median " << p50 << ", 99 % " << p99 << ", 99.9 % " << p999
-                             << ", max " << worst << "; where depth < 1 % of size (" << r.shallow_error.size()
-                             << " pairs): 99 % " << shallow_p99 << ", max " << shallow_worst);
+                             << ", max " << worst << "; where depth < 1 % of size (" << r.shallow_error.size() << " pairs): 99 % "
+                             << shallow_p99 << ", max " << shallow_worst);
     // Measured (g++ and clang++ -O3, 200,000 pairs, seed 43): the booleans never differ (neither
     // collide() nor intersect()). |depth_f − depth_d| / size: median 1.4e-6, 99 % 7.7e-4, 99.9 %
     // 1.4e-2, max 0.47; where the double depth is under 1 % of the size (2,196 pairs, the contacts a
@@ -115,10 +115,11 @@ TEST_CASE("float and double on pairs within a hair of touching: booleans differ 
     pairs.set_touching_fraction(1.0);
     const Comparison r = compare(pairs, kPairs / 4);
     MESSAGE("near-touching pairs: " << r.pairs << ", double hits " << r.double_hits << "; boolean differs: collide() "
-                                    << r.collide_differs << " times (" << 100.0 * r.collide_differs / r.pairs << " %), intersect() "
-                                    << r.intersect_differs << " (" << 100.0 * r.intersect_differs / r.pairs
+                                    << r.collide_differs << " times (" << 100.0 * r.collide_differs / r.pairs
+                                    << " %), intersect() " << r.intersect_differs << " (" << 100.0 * r.intersect_differs / r.pairs
                                     << " %); they differ only within " << r.widest_gap
-                                    << " of the size from touching, and report depths up to " << r.deepest_difference << " of the size");
+                                    << " of the size from touching, and report depths up to " << r.deepest_difference
+                                    << " of the size");
     // Measured (50,000 pairs placed 1e-12 … 1e-4 of their size from touching, seed 44): the float
     // boolean differs from the double one for 37.8 % of them (collide()) and 37.6 % (intersect()),
     // all within 9.7e-6 of the size from touching: float's resolution (its MPR tolerance is 1e-5 of

@@ -38,12 +38,14 @@ TEST_CASE_TEMPLATE("rays hit every shape where the closed form says", T, float, 
     CHECK(near(s->point.x, T(-0.8), T(1e-5)));
     CHECK(near(s->normal, Vec3<T>{T(-0.8), T(0.6), T(0)}, T(1e-5)));
     // Box from above onto its top face.
-    auto b = raycast(Shape<T>(Box<T>(T(1), T(0.5), T(2))), at_origin, ray(Vec3<T>{T(0.3), T(4), T(-1)}, Vec3<T>{T(0.3), T(-4), T(-1)}));
+    auto b = raycast(Shape<T>(Box<T>(T(1), T(0.5), T(2))), at_origin,
+                     ray(Vec3<T>{T(0.3), T(4), T(-1)}, Vec3<T>{T(0.3), T(-4), T(-1)}));
     REQUIRE(b);
     CHECK(near(b->distance, T(3.5)));
     CHECK(near(b->normal, Vec3<T>::unit_y()));
     // Capsule (r 0.5, half length 1, along y): side at x = -0.5, end cap top at y = 1.5.
-    auto c = raycast(Shape<T>(Capsule<T>(T(0.5), T(1))), at_origin, ray(Vec3<T>{T(-3), T(0.7), T(0)}, Vec3<T>{T(3), T(0.7), T(0)}));
+    auto c =
+        raycast(Shape<T>(Capsule<T>(T(0.5), T(1))), at_origin, ray(Vec3<T>{T(-3), T(0.7), T(0)}, Vec3<T>{T(3), T(0.7), T(0)}));
     REQUIRE(c);
     CHECK(near(c->distance, T(2.5)));
     CHECK(near(c->normal, -Vec3<T>::unit_x()));
@@ -52,7 +54,8 @@ TEST_CASE_TEMPLATE("rays hit every shape where the closed form says", T, float, 
     CHECK(near(c->distance, T(3.5)));
     CHECK(near(c->normal, Vec3<T>::unit_y()));
     // Cylinder (r 1, half height 0.5): cap from above, side from the side.
-    auto y = raycast(Shape<T>(Cylinder<T>(T(1), T(0.5))), at_origin, ray(Vec3<T>{T(0.5), T(3), T(0.5)}, Vec3<T>{T(0.5), T(-3), T(0.5)}));
+    auto y = raycast(Shape<T>(Cylinder<T>(T(1), T(0.5))), at_origin,
+                     ray(Vec3<T>{T(0.5), T(3), T(0.5)}, Vec3<T>{T(0.5), T(-3), T(0.5)}));
     REQUIRE(y);
     CHECK(near(y->distance, T(2.5)));
     CHECK(near(y->normal, Vec3<T>::unit_y()));
@@ -60,7 +63,8 @@ TEST_CASE_TEMPLATE("rays hit every shape where the closed form says", T, float, 
     REQUIRE(y);
     CHECK(near(y->distance, T(3)));
     CHECK(near(y->normal, -Vec3<T>::unit_z()));
-    CHECK_FALSE(raycast(Shape<T>(Cylinder<T>(T(1), T(0.5))), at_origin, ray(Vec3<T>{T(1.5), T(3), T(0)}, Vec3<T>{T(1.5), T(-3), T(0)})));
+    CHECK_FALSE(
+        raycast(Shape<T>(Cylinder<T>(T(1), T(0.5))), at_origin, ray(Vec3<T>{T(1.5), T(3), T(0)}, Vec3<T>{T(1.5), T(-3), T(0)})));
     // Cone (r 1, H 2): base at y = -0.5, apex at 1.5. Horizontal ray at y = 0.5 meets the side
     // where the radius is (1.5 - 0.5) / 2 = 0.5; from below it meets the base.
     const Shape<T> cone = Cone<T>(T(1), T(2));
@@ -95,14 +99,15 @@ TEST_CASE_TEMPLATE("rays respect the pose, the length and a start inside", T, fl
     REQUIRE(inside);
     CHECK(inside->distance == T(0));
     CHECK(near(inside->normal, -Vec3<T>::unit_y()));
-    CHECK(contains_point(box, pose, Vec3<T>{T(10.6), T(2), T(0)}));   // within the turned cube's corner
+    CHECK(contains_point(box, pose, Vec3<T>{T(10.6), T(2), T(0)}));  // within the turned cube's corner
     CHECK_FALSE(contains_point(box, pose, Vec3<T>{T(10.5), T(2), T(0.5)}));
 }
 
 TEST_CASE_TEMPLATE("random rays agree with the support function: the hit is on the surface", T, float, double) {
     scenes::Random rng(41);
-    const Shape<T> shapes[] = {Sphere<T>(T(0.7)), Box<T>(T(0.5), T(0.3), T(0.8)), Capsule<T>(T(0.3), T(0.5)), Cylinder<T>(T(0.4), T(0.6)),
-                               Cone<T>(T(0.5), T(1.2)), make_regular_prism(7, T(0.6), T(0.4))};
+    const Shape<T> shapes[] = {Sphere<T>(T(0.7)),          Box<T>(T(0.5), T(0.3), T(0.8)),
+                               Capsule<T>(T(0.3), T(0.5)), Cylinder<T>(T(0.4), T(0.6)),
+                               Cone<T>(T(0.5), T(1.2)),    make_regular_prism(7, T(0.6), T(0.4))};
     int hits = 0;
     for (const Shape<T>& shape : shapes) {
         for (int k = 0; k < 500; ++k) {
@@ -125,7 +130,8 @@ TEST_CASE_TEMPLATE("the world's ray casts find the nearest body and every body i
     World<T> w(C::settings());
     const BodyId ground = scenes::add_ground(w);
     std::vector<BodyId> boxes;
-    for (int i = 0; i < 4; ++i) boxes.push_back(scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(2) * T(i + 1), T(0.5), T(0)}));
+    for (int i = 0; i < 4; ++i)
+        boxes.push_back(scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(2) * T(i + 1), T(0.5), T(0)}));
     const Ray<T> along{{T(0), T(0.5), T(0)}, Vec3<T>::unit_x(), T(100)};
     const auto first = w.raycast(along);
     REQUIRE(first);
@@ -140,7 +146,7 @@ TEST_CASE_TEMPLATE("the world's ray casts find the nearest body and every body i
     CHECK(near(down->hit.distance, T(10)));
     CHECK(w.query_point(Vec3<T>{T(4.2), T(0.7), T(0.1)}) == std::vector<BodyId>{boxes[1]});
     CHECK(w.query_point(Vec3<T>{T(5), T(0.5), T(0)}).empty());
-    CHECK(w.query_aabb(Aabb<T>{{T(3.8), T(0.1), T(-0.2)}, {T(6.2), T(0.2), T(0.2)}}).size() == 2);  // two boxes
+    CHECK(w.query_aabb(Aabb<T>{{T(3.8), T(0.1), T(-0.2)}, {T(6.2), T(0.2), T(0.2)}}).size() == 2);   // two boxes
     CHECK(w.query_aabb(Aabb<T>{{T(3.8), T(-0.1), T(-0.2)}, {T(6.2), T(0.2), T(0.2)}}).size() == 3);  // and the ground
     CHECK_THROWS_AS(w.raycast(Ray<T>{{}, Vec3<T>{T(1), T(1), T(0)}, T(1)}), InvalidArgument);
 }
@@ -164,13 +170,14 @@ long double exact_sphere_entry(const Exact& o, const Exact& d, long double r) {
 }
 }  // namespace
 
-TEST_CASE_TEMPLATE("regression: far rays hit spheres and capsules within 1e-5 (float) or 1e-12 (double) of their distance", T, float, double) {
+TEST_CASE_TEMPLATE("regression: far rays hit spheres and capsules within 1e-5 (float) or 1e-12 (double) of their distance", T,
+                   float, double) {
     // The textbook discriminant b² − a c cancels for far rays: from 1 km a float unit sphere was
     // hit 1 cm off, from 10 km 0.99 m; double 5.7 mm off at 10⁷ m; a capsule was missed entirely
     // from 10⁸ m (float) and 10¹⁷ m (double).
     const bool is_float = std::is_same_v<T, float>;
     const long double bound = is_float ? 1e-5L : 1e-12L;
-    const int max_axis_power = is_float ? 18 : 150;  // squares of the distance stay finite
+    const int max_axis_power = is_float ? 18 : 150;   // squares of the distance stay finite
     const int max_oblique_power = is_float ? 6 : 14;  // rounding of the ray's origin stays ≪ r
     const Shape<T> sphere{Sphere<T>(T(1))};
     const T r = T(0.5), h = T(1);
@@ -181,7 +188,8 @@ TEST_CASE_TEMPLATE("regression: far rays hit spheres and capsules within 1e-5 (f
         const T far = static_cast<T>(std::pow(10.0L, static_cast<long double>(k)));
         CAPTURE(far);
         for (const std::pair<T, T>& offset : offsets) {
-            const T y0 = offset.first, z0 = offset.second;  // not a structured binding: clang++ 14 cannot capture one in CAPTURE's lambda
+            const T y0 = offset.first,
+                    z0 = offset.second;  // not a structured binding: clang++ 14 cannot capture one in CAPTURE's lambda
             CAPTURE(y0);
             CAPTURE(z0);
             // Sphere, along -x: enters at x = √(1 − y0² − z0²).
@@ -196,7 +204,8 @@ TEST_CASE_TEMPLATE("regression: far rays hit spheres and capsules within 1e-5 (f
             const long double cy = 2.0L * ly, cz = 0.5L * lz;
             const long double off_axis = std::abs(cy) <= 1.0L ? 0.0L : std::abs(cy) - 1.0L;
             const long double chord_sq = 0.25L - off_axis * off_axis - cz * cz;
-            const auto c = raycast(capsule, Transform<T>{}, Ray<T>{{far, static_cast<T>(cy), static_cast<T>(cz)}, -Vec3<T>::unit_x()});
+            const auto c =
+                raycast(capsule, Transform<T>{}, Ray<T>{{far, static_cast<T>(cy), static_cast<T>(cz)}, -Vec3<T>::unit_x()});
             if (chord_sq < 1e-4L) {
                 CHECK_FALSE(c);
                 continue;

@@ -34,11 +34,11 @@ Quat<T> about(const Vec3<T>& axis, double angle) {
 // r = 0 and its own description); nothing here calls the code under test.
 struct RefShape {
     bool box = false;
-    Vec3<double> p, q;      // core segment (round shapes)
-    double r = 0;           // radius (round shapes)
-    Vec3<double> c;         // centre (boxes)
-    Vec3<double> axis[3];   // world axes (boxes)
-    Vec3<double> e;         // half extents (boxes)
+    Vec3<double> p, q;     // core segment (round shapes)
+    double r = 0;          // radius (round shapes)
+    Vec3<double> c;        // centre (boxes)
+    Vec3<double> axis[3];  // world axes (boxes)
+    Vec3<double> e;        // half extents (boxes)
 };
 
 template <class T>
@@ -161,7 +161,7 @@ double polytope_depth(const RefShape& round, const RefShape& box) {
                 const double d = dot(m, v[i]);
                 double above = -1e300, below = 1e300;
                 for (const Vec3<double>& x : v) above = std::max(above, dot(m, x) - d), below = std::min(below, dot(m, x) - d);
-                if (above <= 1e-10) best = std::min(best, d);        // a facet with outward normal m
+                if (above <= 1e-10) best = std::min(best, d);         // a facet with outward normal m
                 else if (below >= -1e-10) best = std::min(best, -d);  // ... with outward normal −m
             }
     return round.r + best;
@@ -255,7 +255,8 @@ TEST_CASE_TEMPLATE("capsule-capsule contacts are the closed forms: crossed, skew
     // The same pair turned as a whole: the answer turns with it.
     const Quat<T> turn = about<T>(normalized(Vec3<T>{T(1), T(2), T(3)}), 0.9);
     const Vec3<T> shift{T(5), T(-2), T(1)};
-    const Penetration<T> turned = collide(a, Transform<T>{shift, turn}, b, Transform<T>{shift + rotate(turn, tb.position), turn * tb.orientation});
+    const Penetration<T> turned =
+        collide(a, Transform<T>{shift, turn}, b, Transform<T>{shift + rotate(turn, tb.position), turn * tb.orientation});
     REQUIRE(turned.hit);
     CHECK(near(turned.depth, T(0.1), T(1e-6)));
     CHECK(near(turned.normal, rotate(turn, Vec3<T>::unit_z()), T(1e-6)));
@@ -326,21 +327,25 @@ TEST_CASE_TEMPLATE("sphere-box and capsule-box contacts are the closed forms: fa
     CHECK(near(p.normal, -rotate(turn, Vec3<T>::unit_y()), T(1e-6)));
     // A capsule lying across the box's +x edge region, its core 0.1 outside both the +x and +y
     // faces' planes (axis along z): an edge contact, depth 0.25 − 0.1·√2.
-    const Transform<T> along_z{origin + rotate(turn, Vec3<T>{T(1.1), T(0.6), T(0)}), turn * Quat<T>::from_axis_angle(Vec3<T>::unit_x(), T(1.5707963267948966))};
+    const Transform<T> along_z{origin + rotate(turn, Vec3<T>{T(1.1), T(0.6), T(0)}),
+                               turn * Quat<T>::from_axis_angle(Vec3<T>::unit_x(), T(1.5707963267948966))};
     p = collide(box, tbox, capsule, along_z);
     REQUIRE(p.hit);
     CHECK(near(p.depth, T(0.25) - T(0.1) * std::sqrt(T(2)), T(1e-6)));
     CHECK(near(p.normal, rotate(turn, Vec3<T>{T(1), T(1), T(0)} / std::sqrt(T(2))), T(1e-6)));
     // Its core cutting into the box (axis along x through (0, 0.45, 0)): out through the top face,
     // depth 0.05 + 0.25.
-    p = collide(box, tbox, capsule, Transform<T>{origin + rotate(turn, Vec3<T>{T(0), T(0.45), T(0)}), turn * Quat<T>::from_axis_angle(Vec3<T>::unit_z(), T(1.5707963267948966))});
+    p = collide(box, tbox, capsule,
+                Transform<T>{origin + rotate(turn, Vec3<T>{T(0), T(0.45), T(0)}),
+                             turn * Quat<T>::from_axis_angle(Vec3<T>::unit_z(), T(1.5707963267948966))});
     REQUIRE(p.hit);
     CHECK(near(p.depth, T(0.3), T(1e-6)));
     CHECK(near(p.normal, rotate(turn, Vec3<T>::unit_y()), T(1e-6)));
 }
 
 TEST_CASE_TEMPLATE("degenerate round pairs give finite, exact answers", T, float, double) {
-    const Shape<T> s1 = Sphere<T>(T(0.5)), s2 = Sphere<T>(T(0.7)), c1 = Capsule<T>(T(0.2), T(0.6)), c2 = Capsule<T>(T(0.3), T(0.6));
+    const Shape<T> s1 = Sphere<T>(T(0.5)), s2 = Sphere<T>(T(0.7)), c1 = Capsule<T>(T(0.2), T(0.6)),
+                   c2 = Capsule<T>(T(0.3), T(0.6));
     const Shape<T> box = Box<T>(T(0.4), T(0.5), T(0.6));
     const Transform<T> t = at(T(1), T(2), T(3), about<T>(Vec3<T>::unit_y(), 0.4));
     auto check = [&](const Penetration<T>& p, T depth) {
@@ -355,8 +360,10 @@ TEST_CASE_TEMPLATE("degenerate round pairs give finite, exact answers", T, float
     check(collide(s1, t, s2, t), T(1.2));  // coincident centres
     check(collide(s1, t, c1, t), T(0.7));  // a centre on the other's axis
     check(collide(c1, t, c2, t), T(0.5));  // identical axes
-    check(collide(c1, t, c2, Transform<T>{t.position, t.orientation * about<T>(Vec3<T>::unit_x(), 1.0)}), T(0.5));  // crossing axes
-    check(collide(c1, t, c2, Transform<T>{t.position + rotate(t.orientation, Vec3<T>{T(0), T(0.3), T(0)}), t.orientation}), T(0.5));  // overlapping parallel axes
+    check(collide(c1, t, c2, Transform<T>{t.position, t.orientation * about<T>(Vec3<T>::unit_x(), 1.0)}),
+          T(0.5));  // crossing axes
+    check(collide(c1, t, c2, Transform<T>{t.position + rotate(t.orientation, Vec3<T>{T(0), T(0.3), T(0)}), t.orientation}),
+          T(0.5));  // overlapping parallel axes
     // A sphere's centre at the box's centre: out through the nearest face (x, 0.4 away).
     const Penetration<T> inside = collide(box, t, s1, t);
     check(inside, T(0.9));
@@ -370,11 +377,13 @@ TEST_CASE_TEMPLATE("degenerate round pairs give finite, exact answers", T, float
         const ContactManifold<T> m = generate_contacts(*x, t, *y, t, T(0.02));
         REQUIRE(m.count >= 1);
         CHECK(is_finite(m.normal));
-        for (int i = 0; i < m.count; ++i) CHECK((is_finite(m.points[i].point_a) && is_finite(m.points[i].point_b) && std::isfinite(m.points[i].depth)));
+        for (int i = 0; i < m.count; ++i)
+            CHECK((is_finite(m.points[i].point_a) && is_finite(m.points[i].point_b) && std::isfinite(m.points[i].depth)));
     }
 }
 
-TEST_CASE_TEMPLATE("round pairs match an independent computation at random, both orders, points on their bodies", T, float, double) {
+TEST_CASE_TEMPLATE("round pairs match an independent computation at random, both orders, points on their bodies", T, float,
+                   double) {
     scenes::Random rng(1201);
     const T tol = std::is_same_v<T, float> ? T(2e-5) : T(1e-9);  // of the pair's size
     int hits = 0, speculative = 0;
@@ -430,7 +439,8 @@ TEST_CASE_TEMPLATE("round pairs match an independent computation at random, both
                     const ManifoldPoint<T>& mp = m.points[i];
                     CHECK(mp.depth > -margin);
                     CHECK(outside(ry, Vec3<double>(mp.point_b)) <= double(tol * scale));
-                    CHECK(length(Vec3<double>(mp.point_a - mp.point_b) - Vec3<double>(m.normal) * double(mp.depth)) <= double(tol * scale));
+                    CHECK(length(Vec3<double>(mp.point_a - mp.point_b) - Vec3<double>(m.normal) * double(mp.depth)) <=
+                          double(tol * scale));
                 }
             } else if (exact < -double(margin) - double(tol * scale)) {
                 CHECK(m.count == 0);
@@ -466,14 +476,15 @@ TEST_CASE_TEMPLATE("regression (issue 12): round pairs report the exact minimum 
     for (int i = 0; i < 3; ++i) {
         const std::vector<double>* ratios = sets[i];
         REQUIRE(ratios->size() > 200);
-        MESSAGE(names[i] << " depth / exact minimum: median " << quantile(*ratios, 0.5) << " p99 " << quantile(*ratios, 0.99) << " max "
-                                                 << quantile(*ratios, 1.0) << " min " << quantile(*ratios, 0.0));
+        MESSAGE(names[i] << " depth / exact minimum: median " << quantile(*ratios, 0.5) << " p99 " << quantile(*ratios, 0.99)
+                         << " max " << quantile(*ratios, 1.0) << " min " << quantile(*ratios, 0.0));
         CHECK(quantile(*ratios, 1.0) <= 1 + tol);
         CHECK(quantile(*ratios, 0.0) >= 1 - tol);
     }
 }
 
-TEST_CASE_TEMPLATE("a capsule along a box face and nearly parallel capsules get two points; crossing ones three", T, float, double) {
+TEST_CASE_TEMPLATE("a capsule along a box face and nearly parallel capsules get two points; crossing ones three", T, float,
+                   double) {
     const Shape<T> floor = Box<T>(T(5), T(0.5), T(5));
     const Shape<T> capsule = Capsule<T>(T(0.3), T(0.6));
     const Quat<T> flat = about<T>(Vec3<T>::unit_z(), 1.5707963267948966);
@@ -497,7 +508,8 @@ TEST_CASE_TEMPLATE("a capsule along a box face and nearly parallel capsules get 
     // Tilted so that one end is 0.015 above the floor (a speculative point with its gap), the
     // other 0.01 into it.
     const T lift = T(0.025) / T(1.2);
-    const Transform<T> tilted{{T(0), T(0.8 - 0.01 + 0.0125), T(0)}, Quat<T>::from_axis_angle(Vec3<T>::unit_z(), T(1.5707963267948966) + std::asin(lift))};
+    const Transform<T> tilted{{T(0), T(0.8 - 0.01 + 0.0125), T(0)},
+                              Quat<T>::from_axis_angle(Vec3<T>::unit_z(), T(1.5707963267948966) + std::asin(lift))};
     const ContactManifold<T> t = generate_contacts(floor, origin, capsule, tilted, T(0.02));
     REQUIRE(t.count == 2);
     const T d0 = std::min(t.points[0].depth, t.points[1].depth), d1 = std::max(t.points[0].depth, t.points[1].depth);
@@ -516,7 +528,8 @@ TEST_CASE_TEMPLATE("a capsule along a box face and nearly parallel capsules get 
     // Parallel capsules side by side, B offset along the axis by 0.4: the overlap of their
     // extents, two points 0.05 deep.
     const Shape<T> log = Capsule<T>(T(0.25), T(1));
-    const ContactManifold<T> par = generate_contacts(log, at(T(0), T(0), T(0), flat), log, at(T(0.4), T(0.45), T(0), flat), T(0.02));
+    const ContactManifold<T> par =
+        generate_contacts(log, at(T(0), T(0), T(0), flat), log, at(T(0.4), T(0.45), T(0), flat), T(0.02));
     REQUIRE(par.count == 2);
     CHECK(near(par.normal, Vec3<T>::unit_y(), T(1e-6)));
     CHECK(near(std::min(par.points[0].point_b.x, par.points[1].point_b.x), T(-0.6), T(1e-5)));
@@ -530,12 +543,16 @@ TEST_CASE_TEMPLATE("a capsule along a box face and nearly parallel capsules get 
     for (int i = 1; i < 3; ++i) deepest = std::max(deepest, cross.points[i].depth);
     CHECK(near(deepest, T(0.05), T(1e-5)));
     // Crossing at right angles: one point.
-    CHECK(generate_contacts(log, at(T(0), T(0), T(0), flat), log, at(T(0), T(0.45), T(0), about<T>(Vec3<T>::unit_x(), 1.5707963267948966)), T(0.02)).count == 1);
+    CHECK(generate_contacts(log, at(T(0), T(0), T(0), flat), log,
+                            at(T(0), T(0.45), T(0), about<T>(Vec3<T>::unit_x(), 1.5707963267948966)), T(0.02))
+              .count == 1);
     // Spheres: always one point, speculative ones with their gap.
-    const ContactManifold<T> s = generate_contacts(Shape<T>(Sphere<T>(T(0.5))), origin, Shape<T>(Sphere<T>(T(0.5))), at(T(0), T(1.01), T(0)), T(0.02));
+    const ContactManifold<T> s =
+        generate_contacts(Shape<T>(Sphere<T>(T(0.5))), origin, Shape<T>(Sphere<T>(T(0.5))), at(T(0), T(1.01), T(0)), T(0.02));
     REQUIRE(s.count == 1);
     CHECK(near(s.points[0].depth, T(-0.01), T(1e-6)));
-    CHECK(generate_contacts(Shape<T>(Sphere<T>(T(0.5))), origin, Shape<T>(Sphere<T>(T(0.5))), at(T(0), T(1.03), T(0)), T(0.02)).count == 0);
+    CHECK(generate_contacts(Shape<T>(Sphere<T>(T(0.5))), origin, Shape<T>(Sphere<T>(T(0.5))), at(T(0), T(1.03), T(0)), T(0.02))
+              .count == 0);
 }
 
 TEST_CASE_TEMPLATE("intersect agrees with collide on the closed-form pairs and on boxes", T, float, double) {

@@ -31,7 +31,8 @@ Shape<double> widened(const Shape<T>& s) {
             if constexpr (std::is_same_v<S, Sphere<T>>) return Sphere<double>(double(x.radius()));
             else if constexpr (std::is_same_v<S, Box<T>>) return Box<double>(x.half_extents().template cast<double>());
             else if constexpr (std::is_same_v<S, Capsule<T>>) return Capsule<double>(double(x.radius()), double(x.half_height()));
-            else if constexpr (std::is_same_v<S, Cylinder<T>>) return Cylinder<double>(double(x.radius()), double(x.half_height()));
+            else if constexpr (std::is_same_v<S, Cylinder<T>>)
+                return Cylinder<double>(double(x.radius()), double(x.half_height()));
             else if constexpr (std::is_same_v<S, Cone<T>>) return Cone<double>(double(x.radius()), double(x.height()));
             else {
                 std::vector<Vec3<double>> v;

@@ -59,11 +59,10 @@ template <class T>
 std::string describe(const test::PairParams& p, const char* what) {
     std::ostringstream os;
     os.precision(17);
-    os << what << ": kinds " << p.a.kind << ' ' << p.b.kind << ", dims a " << p.a.dims.x << ' ' << p.a.dims.y << ' '
-       << p.a.dims.z << " (hull " << p.a.hull << "), dims b " << p.b.dims.x << ' ' << p.b.dims.y << ' ' << p.b.dims.z
-       << " (hull " << p.b.hull << "), pose a " << p.pose_a.position.x << ' ' << p.pose_a.position.y << ' '
-       << p.pose_a.position.z << ", pose b " << p.pose_b.position.x << ' ' << p.pose_b.position.y << ' '
-       << p.pose_b.position.z;
+    os << what << ": kinds " << p.a.kind << ' ' << p.b.kind << ", dims a " << p.a.dims.x << ' ' << p.a.dims.y << ' ' << p.a.dims.z
+       << " (hull " << p.a.hull << "), dims b " << p.b.dims.x << ' ' << p.b.dims.y << ' ' << p.b.dims.z << " (hull " << p.b.hull
+       << "), pose a " << p.pose_a.position.x << ' ' << p.pose_a.position.y << ' ' << p.pose_a.position.z << ", pose b "
+       << p.pose_b.position.x << ' ' << p.pose_b.position.y << ' ' << p.pose_b.position.z;
     return os.str();
 }
 
@@ -116,14 +115,14 @@ TEST_CASE_TEMPLATE("a million random narrow-phase queries give finite unit-norma
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     MESSAGE((kPairs * kQueriesPerPair) << " queries in " << query_seconds << " s (" << seconds
-                                     << " s with drawing the pairs); hits " << hits << "; intersect/collide disagree "
-                                     << disagreements << " times, all within " << widest_gap
-                                     << " of the pair's size from touching, reported depth at most " << worst_band
-                                     << " of the size; MPR at most " << max_iterations << " support calls; slowest pair "
-                                     << slowest_pair * 1e3 << " ms");
+                                       << " s with drawing the pairs); hits " << hits << "; intersect/collide disagree "
+                                       << disagreements << " times, all within " << widest_gap
+                                       << " of the pair's size from touching, reported depth at most " << worst_band
+                                       << " of the size; MPR at most " << max_iterations << " support calls; slowest pair "
+                                       << slowest_pair * 1e3 << " ms");
     CHECK_MESSAGE(failures == 0, first_failure);
     CHECK(worst_band <= disagreement_band<T>());
-    CHECK(hits > kPairs / 4);           // the sweep really exercises contacts ...
+    CHECK(hits > kPairs / 4);            // the sweep really exercises contacts ...
     CHECK(hits < kPairs - kPairs / 10);  // ... and misses
-    CHECK(slowest_pair < 1.0);          // no query anywhere near a hang, even on a loaded machine
+    CHECK(slowest_pair < 1.0);           // no query anywhere near a hang, even on a loaded machine
 }

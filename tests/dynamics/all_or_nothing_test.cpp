@@ -34,9 +34,9 @@ struct Scene {
         d.position = {T(2), T(0.3), T(0)};
         ball = w.create_body(Sphere<T>(T(0.3)), d);
         d.position = {T(-2), T(1), T(0)};
-        compound = w.create_body(Compound<T>({{Box<T>(T(0.2), T(0.2), T(0.2)), {}},
-                                              {Sphere<T>(T(0.2)), {{T(0.5), T(0), T(0)}, Quat<T>::identity()}}}),
-                                 d);
+        compound = w.create_body(
+            Compound<T>({{Box<T>(T(0.2), T(0.2), T(0.2)), {}}, {Sphere<T>(T(0.2)), {{T(0.5), T(0), T(0)}, Quat<T>::identity()}}}),
+            d);
         hinge = w.create_joint(JointDef<T>::hinge(box, ball, {T(1), T(0.5), T(0)}, {T(0), T(0), T(1)}));
         for (int i = 0; i < 20; ++i) w.step(T(1) / T(60));
         w.destroy_body(gone);
@@ -90,7 +90,8 @@ TEST_CASE_TEMPLATE("a rejected create_body leaves no body and no trace behind", 
     rejected_unchanged(w, [&] { w.create_body(off); });
 }
 
-TEST_CASE_TEMPLATE("bodies the size rules accept get their mass even when their inertia's determinant underflows", T, float, double) {
+TEST_CASE_TEMPLATE("bodies the size rules accept get their mass even when their inertia's determinant underflows", T, float,
+                   double) {
     // The reproducers: a 0.1 mm float sphere and box at density 1000, a 0.5 m float box
     // at density 1e-30 and a 1e-30 m double sphere were rejected, with a body left behind. Their
     // mass and inertia are representable, so they are bodies: mass = density × volume, and they

@@ -45,9 +45,13 @@ TEST_CASE_TEMPLATE("the contact filter may not change the world: every mutating 
     // Each call the filter tries once, in turn; every one must throw and change nothing.
     std::vector<std::function<void()>> attempts{
         [&] { w.create_body(Sphere<T>(T(0.5))); },
-        [&] { w.create_body(Compound<T>({{Sphere<T>(T(0.5)), {}}})); },
+        [&] {
+            w.create_body(Compound<T>({{Sphere<T>(T(0.5)), {}}}));
+        },
         [&] { w.destroy_body(spare); },
-        [&] { w.set_transform(boxes[2], {T(0), T(9), T(0)}, Quat<T>::identity()); },
+        [&] {
+            w.set_transform(boxes[2], {T(0), T(9), T(0)}, Quat<T>::identity());
+        },
         [&] { w.create_joint(JointDef<T>::ball(boxes[1], boxes[2], {})); },
         [&] { w.destroy_joint(joint); },
         [&] { w.set_hinge_motor(joint, true, T(1), T(1)); },

@@ -20,7 +20,8 @@ TEST_CASE_TEMPLATE("two boxes side by side have the mass properties of one long 
     CHECK(near(m.inertia, one.inertia, T(1e-5)));
     CHECK(near(pair.children()[0].local.position, Vec3<T>{T(-0.5), T(0), T(0)}));
     // A turned part: a box along y turned to lie along x is the same box.
-    const Compound<T> turned({{Box<T>(T(0.5), T(1), T(0.5)), {{T(3), T(2), T(1)}, Quat<T>::from_axis_angle(Vec3<T>::unit_z(), ScalarTraits<T>::pi / 2)}}});
+    const Compound<T> turned({{Box<T>(T(0.5), T(1), T(0.5)),
+                               {{T(3), T(2), T(1)}, Quat<T>::from_axis_angle(Vec3<T>::unit_z(), ScalarTraits<T>::pi / 2)}}});
     CHECK(near(mass_properties(turned, T(700)).inertia, one.inertia));
     CHECK(near(turned.shift(), Vec3<T>{T(3), T(2), T(1)}));
     CHECK_THROWS_AS(Compound<T>(std::vector<CompoundChild<T>>{}), InvalidArgument);
@@ -35,7 +36,8 @@ TEST_CASE_TEMPLATE("stacks of L-shapes and tables stand for 10 s", C, XENO_TEST_
     for (BodyId id : scene.bodies) at_one.push_back(w.body(id).position());
     test::simulate(w, T(9));
     T creep = T(0);
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) creep = std::max(creep, length(w.body(scene.bodies[i]).position() - at_one[i]));
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+        creep = std::max(creep, length(w.body(scene.bodies[i]).position() - at_one[i]));
     CAPTURE(creep);
     CHECK(creep < T(0.01));
     // The top table is still on top: about two table heights up.
@@ -43,7 +45,8 @@ TEST_CASE_TEMPLATE("stacks of L-shapes and tables stand for 10 s", C, XENO_TEST_
     // Each table touches the one below with its four legs: four manifolds, one per leg.
     int leg_contacts = 0;
     for (const Contact<T>& c : w.contacts())
-        if ((c.a == scene.bodies[4] && c.b == scene.bodies[5]) || (c.a == scene.bodies[5] && c.b == scene.bodies[4])) ++leg_contacts;
+        if ((c.a == scene.bodies[4] && c.b == scene.bodies[5]) || (c.a == scene.bodies[5] && c.b == scene.bodies[4]))
+            ++leg_contacts;
     CHECK(leg_contacts == 4);
 }
 

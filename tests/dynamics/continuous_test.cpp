@@ -28,7 +28,7 @@ TEST_CASE_TEMPLATE("a small box fired at 300 m/s never passes through a thin wal
         T furthest = T(0);
         test::simulate(w, T(1), [&](int) { furthest = std::max(furthest, w.body(id).position().x); });
         CAPTURE(angle);
-        CHECK(furthest < T(10) - T(0.05));        // never past the wall's near face
+        CHECK(furthest < T(10) - T(0.05));  // never past the wall's near face
         CHECK(w.body(id).position().x < T(10));
         CHECK(w.contains(wall_id));
     }

@@ -128,6 +128,6 @@ TEST_CASE_TEMPLATE("a sensor reports overlaps and never pushes", C, XENO_TEST_CO
         }
     });
     CHECK(began == 1);
-    CHECK(ended == 1);                                                  // it fell through the sensor
-    CHECK(test::near(w.body(box).position().y, T(0.5), T(1e-3)));       // and landed on the ground
+    CHECK(ended == 1);                                             // it fell through the sensor
+    CHECK(test::near(w.body(box).position().y, T(0.5), T(1e-3)));  // and landed on the ground
 }

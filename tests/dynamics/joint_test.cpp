@@ -44,7 +44,8 @@ TEST_CASE_TEMPLATE("a pendulum's small-angle period is 2 pi sqrt(L/g) within 1 %
     REQUIRE(crossings.size() >= 5);
     const T period = (crossings.back() - crossings.front()) / T(crossings.size() - 1);
     // A ball of radius r on a massless rod: I = m L² + 2/5 m r² about the pivot.
-    const T expected = T(2) * ScalarTraits<T>::pi * std::sqrt(length_m / T(9.81)) * std::sqrt(T(1) + T(0.4) * r * r / (length_m * length_m));
+    const T expected =
+        T(2) * ScalarTraits<T>::pi * std::sqrt(length_m / T(9.81)) * std::sqrt(T(1) + T(0.4) * r * r / (length_m * length_m));
     CAPTURE(period);
     CAPTURE(expected);
     CHECK(std::abs(period - expected) < T(0.01) * expected);
@@ -101,7 +102,7 @@ TEST_CASE_TEMPLATE("a hinged door stops at its limit", C, XENO_TEST_CONFIGS) {
     test::simulate(w, T(3), [&](int) { most = std::max(most, w.hinge_angle(id)); });
     CAPTURE(most);
     CHECK(most < hinge.upper_angle + T(0.03));
-    CHECK(most > hinge.upper_angle - T(0.05));          // it reached the stop
+    CHECK(most > hinge.upper_angle - T(0.05));  // it reached the stop
     // It stays at the stop: any rebound is a small fraction of the impact speed (about 1 rad/s).
     CHECK(near(w.hinge_angle(id), hinge.upper_angle, T(0.05)));
     CHECK(std::abs(w.body(door).angular_velocity().y) < T(0.02));
@@ -155,7 +156,8 @@ TEST_CASE_TEMPLATE("bad joint definitions are reported and destroyed bodies take
     CHECK_THROWS_AS(w.create_joint(JointDef<T>::ball(fixed, other, Vec3<T>{})), InvalidArgument);
     CHECK_THROWS_AS(w.create_joint(JointDef<T>::ball(fixed, BodyId{}, Vec3<T>{})), InvalidArgument);
     CHECK_THROWS_AS(w.create_joint(JointDef<T>::hinge(fixed, box, Vec3<T>{}, Vec3<T>{})), InvalidArgument);
-    CHECK_THROWS_AS(w.create_joint(JointDef<T>::ball(fixed, box, Vec3<T>{std::numeric_limits<T>::quiet_NaN(), T(0), T(0)})), InvalidArgument);
+    CHECK_THROWS_AS(w.create_joint(JointDef<T>::ball(fixed, box, Vec3<T>{std::numeric_limits<T>::quiet_NaN(), T(0), T(0)})),
+                    InvalidArgument);
     JointDef<T> bad_limit = JointDef<T>::hinge(fixed, box, Vec3<T>{}, Vec3<T>::unit_y());
     bad_limit.enable_limit = true;
     bad_limit.lower_angle = T(1);
@@ -177,7 +179,8 @@ TEST_CASE_TEMPLATE("a ragdoll falls onto a step and settles with its joints hold
         T worst = T(0);
         for (std::uint32_t i = 0; i < 9; ++i) {
             const Joint<T>& j = w.joint(JointId{i, 0});
-            worst = std::max(worst, distance(w.body(j.a).world_point(j.local_anchor_a), w.body(j.b).world_point(j.local_anchor_b)));
+            worst =
+                std::max(worst, distance(w.body(j.a).world_point(j.local_anchor_a), w.body(j.b).world_point(j.local_anchor_b)));
         }
         return worst;
     };
@@ -194,7 +197,7 @@ TEST_CASE_TEMPLATE("a ragdoll falls onto a step and settles with its joints hold
                                  // hinge limit holds a joint slightly open)
     CHECK(test::kinetic_energy(w) < T(0.05));
     for (BodyId id : scene.bodies) {
-        CHECK(w.body(id).position().y > T(0));   // on the ground or the step, not under
+        CHECK(w.body(id).position().y > T(0));    // on the ground or the step, not under
         CHECK(w.body(id).position().y < T(1.5));  // and down
     }
 }

@@ -180,7 +180,9 @@ TEST_CASE_TEMPLATE("momentum is conserved when two bodies collide without gravit
     b.density = T(2500);
     const BodyId ia = w.create_body(Box<T>(T(0.5), T(0.4), T(0.3)), a);
     const BodyId ib = w.create_body(Sphere<T>(T(0.6)), b);
-    auto momentum = [&] { return w.body(ia).linear_velocity() * w.body(ia).mass() + w.body(ib).linear_velocity() * w.body(ib).mass(); };
+    auto momentum = [&] {
+        return w.body(ia).linear_velocity() * w.body(ia).mass() + w.body(ib).linear_velocity() * w.body(ib).mass();
+    };
     const Vec3<T> p0 = momentum();
     bool touched = false;
     simulate(w, T(2), [&](int) { touched |= !w.contacts().empty() && w.contacts()[0].touching; });

@@ -55,9 +55,8 @@ ShotResult shoot_resting_box(bool sleeping, T box_mass, T sphere_mass) {
     sd.mass = sphere_mass;
     w.create_body(Sphere<T>(T(0.25)), sd);
     const T x0 = w.body(box).position().x;
-    test::simulate(w, T(2), [&](int) {
-        r.peak_momentum = std::max(r.peak_momentum, double(box_mass * w.body(box).linear_velocity().x));
-    });
+    test::simulate(w, T(2),
+                   [&](int) { r.peak_momentum = std::max(r.peak_momentum, double(box_mass * w.body(box).linear_velocity().x)); });
     r.box_moved = double(w.body(box).position().x - x0);
     return r;
 }

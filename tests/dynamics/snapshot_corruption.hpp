@@ -37,9 +37,9 @@ struct CorruptionScene {
         box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
         d = {};
         d.position = {T(1.25), T(0.49), T(0.25)};
-        compound = w.create_body(Compound<T>({{Box<T>(T(0.3), T(0.5), T(0.3)), {}},
-                                              {Sphere<T>(T(0.3)), {{T(0.6), T(0), T(0)}, Quat<T>::identity()}}}),
-                                 d);
+        compound = w.create_body(
+            Compound<T>({{Box<T>(T(0.3), T(0.5), T(0.3)), {}}, {Sphere<T>(T(0.3)), {{T(0.6), T(0), T(0)}, Quat<T>::identity()}}}),
+            d);
         d = {};
         d.position = {T(50), T(50), T(50)};
         const BodyId far = w.create_body(Sphere<T>(T(0.5)), d);

@@ -14,7 +14,7 @@ namespace {
 /// Where the parts of a CorruptionScene snapshot are (the format is in snapshot.hpp, save()).
 template <class T>
 struct Layout {
-    std::size_t settings = 12;  // after magic, version, scalar size
+    std::size_t settings = 12;                         // after magic, version, scalar size
     std::size_t free_slots, bounds, contacts, joints;  // first element of each table
     std::size_t box_user_data, box_position;
     Layout(const CorruptionScene<T>& s, const std::vector<std::uint8_t>& bytes) {
@@ -31,7 +31,8 @@ struct Layout {
         at -= 8 + 4 * free;
         free_slots = at + 8;
         box_user_data = find_bytes(bytes, std::uint64_t(0x1122334455667788ull));
-        box_position = box_user_data - (5 * sizeof(Vec3<T>) + sizeof(Quat<T>) + sizeof(Mat3<T>) + 5 * sizeof(T) + sizeof(Material<T>));
+        box_position =
+            box_user_data - (5 * sizeof(Vec3<T>) + sizeof(Quat<T>) + sizeof(Mat3<T>) + 5 * sizeof(T) + sizeof(Material<T>));
     }
 };
 
@@ -80,7 +81,8 @@ TEST_CASE_TEMPLATE("restore_snapshot rejects each corruption seen, leaving the w
     bad(at.contacts + member_offset(contact, contact.child_a), std::uint32_t(3), "contact part index out of range");
     bad(at.contacts + member_offset(contact, contact.b.index), std::uint32_t(0), "contact pair not a < b");
     bad(at.contacts + member_offset(contact, contact.b.generation), std::uint32_t(77), "contact with a stale handle");
-    bad(at.contacts + member_offset(contact, contact.manifold.normal.x), std::numeric_limits<T>::quiet_NaN(), "contact normal NaN");
+    bad(at.contacts + member_offset(contact, contact.manifold.normal.x), std::numeric_limits<T>::quiet_NaN(),
+        "contact normal NaN");
     // Settings: an iteration count that makes a step never end, bool bytes, enum values.
     bad(at.settings + member_offset(settings, settings.velocity_iterations), 33554433, "33,554,433 iterations");
     bad(at.settings + member_offset(settings, settings.substeps), 0, "no substeps");

@@ -60,8 +60,9 @@ TEST_CASE_TEMPLATE("a 10-box column stands for 10 s with creep and sag under 1 %
     for (const auto& [mode, sleeping] : {std::pair{SolverMode::soft_step, true}, std::pair{SolverMode::soft_step, false},
                                          std::pair{SolverMode::baumgarte, false}}) {
         const StackResult<T> r = run_stack<T>(mode, sleeping, [](World<T>& w) { return scenes::column(w, 10); });
-        std::printf("column-10   %s %-9s %-8s creep %.5f m  sag %.5f m\n", name<T>(), mode == SolverMode::soft_step ? "soft-step" : "baumgarte",
-                    sleeping ? "sleeping" : "awake", double(r.creep), double(r.sag));
+        std::printf("column-10   %s %-9s %-8s creep %.5f m  sag %.5f m\n", name<T>(),
+                    mode == SolverMode::soft_step ? "soft-step" : "baumgarte", sleeping ? "sleeping" : "awake", double(r.creep),
+                    double(r.sag));
         if (mode == SolverMode::soft_step) {
             CHECK(r.creep < T(0.01));
             CHECK(r.sag < T(0.01));
@@ -76,8 +77,9 @@ TEST_CASE_TEMPLATE("a 20-base pyramid of 210 boxes stands for 10 s with creep an
     for (const auto& [mode, sleeping] : {std::pair{SolverMode::soft_step, true}, std::pair{SolverMode::soft_step, false},
                                          std::pair{SolverMode::baumgarte, false}}) {
         const StackResult<T> r = run_stack<T>(mode, sleeping, [](World<T>& w) { return scenes::pyramid(w, 20); });
-        std::printf("pyramid-20  %s %-9s %-8s creep %.5f m  sag %.5f m\n", name<T>(), mode == SolverMode::soft_step ? "soft-step" : "baumgarte",
-                    sleeping ? "sleeping" : "awake", double(r.creep), double(r.sag));
+        std::printf("pyramid-20  %s %-9s %-8s creep %.5f m  sag %.5f m\n", name<T>(),
+                    mode == SolverMode::soft_step ? "soft-step" : "baumgarte", sleeping ? "sleeping" : "awake", double(r.creep),
+                    double(r.sag));
         if (mode == SolverMode::soft_step) {
             CHECK(r.creep < T(0.01));
             CHECK(r.sag < T(0.01));
@@ -99,8 +101,8 @@ TEST_CASE_TEMPLATE("a box 400 times heavier rests on a light one without explodi
         worst_overlap = std::max({worst_overlap, -gap_top, -gap_ground});
         if (step > 540) energy_late = std::max(energy_late, test::kinetic_energy(w));
     });
-    std::printf("heavy-on-light %s: largest overlap %.4f m, kinetic energy in the last second %.2e J\n", name<T>(), double(worst_overlap),
-                double(energy_late));
+    std::printf("heavy-on-light %s: largest overlap %.4f m, kinetic energy in the last second %.2e J\n", name<T>(),
+                double(worst_overlap), double(energy_late));
     CHECK(worst_overlap < T(0.03));  // 3 % of the small box's size
     CHECK(energy_late < T(1e-3));
     CHECK(std::abs(w.body(heavy).position().x) < T(0.01));  // nothing slid off
@@ -114,12 +116,14 @@ TEST_CASE_TEMPLATE("a heavier box on a lighter one comes to rest at every mass r
     for (const T ratio : {T(2), T(5), T(10), T(50), T(200), T(1000)}) {
         World<T> w(C::settings());
         scenes::add_ground(w);
-        const BodyId light = scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5), T(0)}, Quat<T>::identity(), T(100));
+        const BodyId light =
+            scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5), T(0)}, Quat<T>::identity(), T(100));
         const BodyId heavy =
             scenes::add_box(w, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(1.5), T(0)}, Quat<T>::identity(), T(100) * ratio);
         T late = T(0);
         test::simulate(w, T(10), [&](int step) {
-            if (step > 480) late = std::max(late, length(w.body(heavy).linear_velocity()) + length(w.body(light).linear_velocity()));
+            if (step > 480)
+                late = std::max(late, length(w.body(heavy).linear_velocity()) + length(w.body(light).linear_velocity()));
         });
         CAPTURE(ratio);
         CHECK(late < T(1e-3));
@@ -134,8 +138,8 @@ TEST_CASE_TEMPLATE("scenario 7: block on plank on prism settles", C, XENO_TEST_C
     const T energy = test::kinetic_energy(w);
     CHECK(energy < T(1e-3));
     for (BodyId id : scene.bodies) {
-        CHECK(w.body(id).position().y > T(0));           // nothing fell through
-        CHECK(length(w.body(id).position()) < T(5));      // nothing flew away
+        CHECK(w.body(id).position().y > T(0));        // nothing fell through
+        CHECK(length(w.body(id).position()) < T(5));  // nothing flew away
     }
     // The block's end went down: the plank tilted towards it.
     const Vec3<T> plank_x = rotate(w.body(scene.bodies[1]).orientation(), Vec3<T>::unit_x());

@@ -22,8 +22,15 @@ namespace {
 
 template <class T>
 std::vector<T> awkward_values(std::size_t n) {
-    std::vector<T> v = {T(0), -T(0), T(1), T(-1), std::numeric_limits<T>::infinity(), -std::numeric_limits<T>::infinity(),
-                        std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::denorm_min(), std::numeric_limits<T>::max(),
+    std::vector<T> v = {T(0),
+                        -T(0),
+                        T(1),
+                        T(-1),
+                        std::numeric_limits<T>::infinity(),
+                        -std::numeric_limits<T>::infinity(),
+                        std::numeric_limits<T>::quiet_NaN(),
+                        std::numeric_limits<T>::denorm_min(),
+                        std::numeric_limits<T>::max(),
                         std::numeric_limits<T>::min()};
     std::mt19937 rng(7);
     std::uniform_real_distribution<T> u(T(-100), T(100));
@@ -47,12 +54,15 @@ TEST_CASE_TEMPLATE("SIMD lanes give the portable lanes' bits for every operation
     for (std::size_t i = 0; i + W <= values.size(); ++i)
         for (std::size_t j = 0; j + W <= values.size(); j += 3) {
             alignas(64) T xa[W], xb[W];
-            for (int l = 0; l < W; ++l) xa[l] = values[i + std::size_t(l)], xb[l] = values[(j + std::size_t(l) * 5) % values.size()];
+            for (int l = 0; l < W; ++l)
+                xa[l] = values[i + std::size_t(l)], xb[l] = values[(j + std::size_t(l) * 5) % values.size()];
             const V a = V::load(xa), b = V::load(xb);
-            const V wide[] = {a + b, a - b, a * b, a / b, max(a, b), min(a, b), sqrt(a), select(a > b, a, b), select(a < b, a, b)};
+            const V wide[] = {
+                a + b, a - b, a * b, a / b, max(a, b), min(a, b), sqrt(a), select(a > b, a, b), select(a < b, a, b)};
             for (int l = 0; l < W; ++l) {
                 const S p = S::splat(xa[l]), q = S::splat(xb[l]);
-                const S narrow[] = {p + q, p - q, p * q, p / q, max(p, q), min(p, q), sqrt(p), select(p > q, p, q), select(p < q, p, q)};
+                const S narrow[] = {
+                    p + q, p - q, p * q, p / q, max(p, q), min(p, q), sqrt(p), select(p > q, p, q), select(p < q, p, q)};
                 for (std::size_t k = 0; k < std::size(wide); ++k) {
                     INFO("operation " << k << " on " << xa[l] << ", " << xb[l]);
                     CHECK(same_bits(wide[k].get(l), narrow[k].get(0)));
@@ -96,7 +106,8 @@ TEST_CASE("colouring: no colour holds two rows of one moving body, every row onc
             if (b[i] == a[i]) b[i] = 0;  // a row joins two bodies
         }
         detail::ConstraintColouring c;
-        c.build(rows, bodies, [&](std::size_t i) { return a[i]; }, [&](std::size_t i) { return b[i]; });
+        c.build(
+            rows, bodies, [&](std::size_t i) { return a[i]; }, [&](std::size_t i) { return b[i]; });
         std::vector<int> seen(rows, 0);
         for (int colour = 0; colour < detail::ConstraintColouring::colours; ++colour) {
             std::set<std::uint32_t> used;
@@ -123,7 +134,8 @@ TEST_CASE("colouring: no colour holds two rows of one moving body, every row onc
                 for (std::uint32_t k = c.colour_begin[std::size_t(colour)]; k < c.colour_begin[std::size_t(colour) + 1]; ++k) {
                     const std::uint32_t r = c.order[k];
                     if (r > row) break;
-                    taken = taken || (a[row] != 0 && (a[r] == a[row] || b[r] == a[row])) || (b[row] != 0 && (a[r] == b[row] || b[r] == b[row]));
+                    taken = taken || (a[row] != 0 && (a[r] == a[row] || b[r] == a[row])) ||
+                            (b[row] != 0 && (a[r] == b[row] || b[r] == b[row]));
                 }
                 colours_taken += taken ? 1 : 0;
             }

@@ -65,7 +65,8 @@ TEST_CASE_TEMPLATE("bad input at body creation and stepping is reported, never s
     std::vector<Vec3<T>> moved;
     for (const Vec3<T>& v : unit.vertices()) moved.push_back(v + Vec3<T>{T(3), T(0), T(0)});
     std::vector<std::vector<std::uint32_t>> faces;
-    for (const auto& f : unit.faces()) faces.emplace_back(unit.face_indices().begin() + f.first, unit.face_indices().begin() + f.first + f.count);
+    for (const auto& f : unit.faces())
+        faces.emplace_back(unit.face_indices().begin() + f.first, unit.face_indices().begin() + f.first + f.count);
     CHECK_THROWS_AS(w.create_body(ConvexPolyhedron<T>(moved, faces)), InvalidArgument);
     CHECK(w.body_count() == 0);
     // dt must be finite and positive.
@@ -115,9 +116,9 @@ TEST_CASE_TEMPLATE("static bodies never move and kinematic bodies push dynamic o
     const BodyId pusher = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), k);
     test::simulate(w, T(3));
     CHECK(w.body(ground).position() == Vec3<T>{T(0), T(-0.5), T(0)});
-    CHECK(near(w.body(pusher).position().x, T(1), T(1e-3)));       // moved by its velocity only
+    CHECK(near(w.body(pusher).position().x, T(1), T(1e-3)));  // moved by its velocity only
     CHECK(near(w.body(pusher).linear_velocity().x, T(1)));
-    CHECK(w.body(box).position().x > T(1.9));                       // pushed ahead of it
+    CHECK(w.body(box).position().x > T(1.9));  // pushed ahead of it
     CHECK(w.body(pusher).mass() == std::numeric_limits<T>::infinity());
 }
 
@@ -138,9 +139,9 @@ TEST_CASE_TEMPLATE("forces and impulses at a point change velocity and spin as N
     b.set_angular_velocity({});
     b.apply_force_at(Vec3<T>{T(m), T(0), T(0)}, w.body(id).position() + Vec3<T>{T(0), T(0.5), T(0)});
     w.step(T(1) / T(60));
-    CHECK(near(w.body(id).linear_velocity().x, T(1) / T(60), T(1e-4)));    // a = F/m = 1 m/s²
-    CHECK(w.body(id).angular_velocity().z < T(0));                         // (0, 0.5, 0) × (m, 0, 0) points along -z
-    CHECK(w.body(id).force() == Vec3<T>::zero());                          // forces last one step
+    CHECK(near(w.body(id).linear_velocity().x, T(1) / T(60), T(1e-4)));  // a = F/m = 1 m/s²
+    CHECK(w.body(id).angular_velocity().z < T(0));                       // (0, 0.5, 0) × (m, 0, 0) points along -z
+    CHECK(w.body(id).force() == Vec3<T>::zero());                        // forces last one step
     // World/body frame helpers round-trip.
     const Vec3<T> p{T(0.1), T(0.2), T(0.3)};
     CHECK(near(w.body(id).local_point(w.body(id).world_point(p)), p));

@@ -37,8 +37,8 @@ PairSpec decode(FuzzedDataProvider& in) {
     const double far = fuzz::log_uniform(in, -2, 4);
     p.pose_a = {position_a * far, fuzz::rotation(in)};
     // B from A's centre out to past the sum of the largest sizes, in any direction.
-    const double reach = (p.a.size[0] + p.a.size[1] + p.a.size[2] + p.b.size[0] + p.b.size[1] + p.b.size[2]) *
-                         1.2 * in.ConsumeProbability<double>();
+    const double reach = (p.a.size[0] + p.a.size[1] + p.a.size[2] + p.b.size[0] + p.b.size[1] + p.b.size[2]) * 1.2 *
+                         in.ConsumeProbability<double>();
     const Vec3<double> direction{fuzz::signed_unit(in), fuzz::signed_unit(in), fuzz::signed_unit(in)};
     p.pose_b = {p.pose_a.position + normalized_or(direction, Vec3<double>::unit_x()) * reach, fuzz::rotation(in)};
     p.margin = in.ConsumeBool() ? 0.0 : fuzz::log_uniform(in, -4, 1);
@@ -100,7 +100,8 @@ void run(const PairSpec& spec) {
     const T margin = static_cast<T>(spec.margin);
     const T scale = bounding_radius(*a) + bounding_radius(*b) + margin;
     // The boolean and the penetration query may disagree only on touching pairs.
-    if (hit != c.hit && std::max(c.hit ? c.depth : T(0), m.hit ? m.depth : T(0)) > T(0.05) * scale) fuzz::fail("intersect and collide disagree on a deep overlap");
+    if (hit != c.hit && std::max(c.hit ? c.depth : T(0), m.hit ? m.depth : T(0)) > T(0.05) * scale)
+        fuzz::fail("intersect and collide disagree on a deep overlap");
 
     const ContactManifold<T> manifold = generate_contacts(*a, pose_a, *b, pose_b, margin);
     if (manifold.count < 0 || manifold.count > 4) fuzz::fail("manifold count outside 0 … 4");

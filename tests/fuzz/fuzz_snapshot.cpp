@@ -48,7 +48,8 @@ void run(const std::vector<std::uint8_t>& bytes) {
     w.for_each_body([&](BodyId id, const Body<T>&) { living.push_back(id); });
     for (int i = 0; i < 10; ++i) w.step(T(1) / T(60));
     w.for_each_body([](BodyId, const Body<T>& b) {
-        if (!(is_finite(b.position()) && is_finite(b.orientation()) && is_finite(b.linear_velocity()) && is_finite(b.angular_velocity())))
+        if (!(is_finite(b.position()) && is_finite(b.orientation()) && is_finite(b.linear_velocity()) &&
+              is_finite(b.angular_velocity())))
             fail("a body's state is not finite after stepping a restored world");
     });
     const std::size_t count = w.body_count();

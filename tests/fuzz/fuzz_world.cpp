@@ -78,7 +78,11 @@ BodyId create(World<T>& world, FuzzedDataProvider& in) {
         case 1: def.linear_velocity.y = non_finite; break;
         case 2: def.angular_velocity.z = non_finite; break;
         case 3: def.orientation = std::isfinite(bad) ? Quat<T>{T(0), T(0), T(0), T(0)} : Quat<T>{bad, T(0), T(0), T(0)}; break;
-        case 4: def.density = bad; def.mass = T(0); def.type = BodyType::dynamic; break;  // 0, -1 or non-finite
+        case 4:
+            def.density = bad;
+            def.mass = T(0);
+            def.type = BodyType::dynamic;
+            break;  // 0, -1 or non-finite
         case 5: def.gravity_scale = non_finite; break;
         default: {
             try {
@@ -138,8 +142,11 @@ void run(FuzzedDataProvider& in) {
                 if (in.ConsumeIntegralInRange<int>(0, 7) == 0) {
                     const T bad = static_cast<T>(fuzz::poison(in));
                     if (!std::isfinite(bad))
-                        must_reject([&] { world.body(id).set_linear_velocity(Vec3<T>{bad, T(0), T(0)}); },
-                                    "set_linear_velocity accepted a non-finite velocity");
+                        must_reject(
+                            [&] {
+                                world.body(id).set_linear_velocity(Vec3<T>{bad, T(0), T(0)});
+                            },
+                            "set_linear_velocity accepted a non-finite velocity");
                 } else {
                     world.body(id).set_linear_velocity(vector<T>(in, fuzz::log_uniform(in, -2, 3)));
                     world.body(id).set_angular_velocity(vector<T>(in, fuzz::log_uniform(in, -2, 2)));
@@ -156,7 +163,8 @@ void run(FuzzedDataProvider& in) {
                     // Finite but extreme (up to the largest T): accepted, and then stepped to a
                     // finite state, or rejected leaving the accumulated sums as they were.
                     Body<T>& b = world.body(id);
-                    const T big = static_cast<T>(static_cast<double>(std::numeric_limits<T>::max()) * in.ConsumeProbability<double>());
+                    const T big =
+                        static_cast<T>(static_cast<double>(std::numeric_limits<T>::max()) * in.ConsumeProbability<double>());
                     const Vec3<T> push{big, -big, in.ConsumeBool() ? big : T(0)};
                     const Vec3<T> force = b.force(), torque = b.torque();
                     try {

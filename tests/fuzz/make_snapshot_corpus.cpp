@@ -35,9 +35,8 @@ void small_world(World<T>& w) {
     d.position = {T(-1), T(0.49), T(0)};
     const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
     d.position = {T(1.25), T(0.49), T(0.25)};
-    const BodyId compound = w.create_body(Compound<T>({{Box<T>(T(0.3), T(0.5), T(0.3)), {}},
-                                                       {Sphere<T>(T(0.3)), {{T(0.6), T(0), T(0)}, Quat<T>::identity()}}}),
-                                          d);
+    const BodyId compound = w.create_body(
+        Compound<T>({{Box<T>(T(0.3), T(0.5), T(0.3)), {}}, {Sphere<T>(T(0.3)), {{T(0.6), T(0), T(0)}, Quat<T>::identity()}}}), d);
     d.position = {T(0), T(3), T(0)};
     const BodyId falling = w.create_body(Capsule<T>(T(0.2), T(0.4)), d);
     w.create_joint(JointDef<T>::hinge(box, compound, {T(0), T(0.5), T(0)}, {T(0), T(0), T(1)}));

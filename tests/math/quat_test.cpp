@@ -71,8 +71,7 @@ TEST_CASE_TEMPLATE("euler angles round-trip away from gimbal lock", T, float, do
 
 TEST_CASE_TEMPLATE("euler convention is yaw about y, then pitch about x, then roll about z", T, float, double) {
     const T a = T(0.4), b = T(-0.3), c = T(1.1);
-    const Quat<T> expected = Quat<T>::from_axis_angle(Vec3<T>::unit_y(), a) *
-                             Quat<T>::from_axis_angle(Vec3<T>::unit_x(), b) *
+    const Quat<T> expected = Quat<T>::from_axis_angle(Vec3<T>::unit_y(), a) * Quat<T>::from_axis_angle(Vec3<T>::unit_x(), b) *
                              Quat<T>::from_axis_angle(Vec3<T>::unit_z(), c);
     CHECK(same_rotation(Quat<T>::from_euler({a, b, c}), expected));
     // Pure yaw turns +z towards +x (right-handed about y).

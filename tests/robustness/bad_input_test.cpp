@@ -39,24 +39,28 @@ std::string rejection(const std::function<void()>& f) {
 
 /// Checks that the expression is rejected with a message containing both fragments (typically the
 /// function and the argument).
-#define CHECK_REJECTED(expression, where, what)                                                  \
-    do {                                                                                         \
-        const std::string message_ = rejection([&] { (void)(expression); });                    \
-        INFO(#expression << "  ->  " << message_);                                               \
-        CHECK(message_.find(where) != std::string::npos);                                        \
-        CHECK(message_.find(what) != std::string::npos);                                         \
+#define CHECK_REJECTED(expression, where, what)                              \
+    do {                                                                     \
+        const std::string message_ = rejection([&] { (void)(expression); }); \
+        INFO(#expression << "  ->  " << message_);                           \
+        CHECK(message_.find(where) != std::string::npos);                    \
+        CHECK(message_.find(what) != std::string::npos);                     \
     } while (false)
 
 template <class T>
 std::vector<T> non_positive_or_non_finite() {
-    return {T(0), T(-0.0), T(-1), std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::infinity(),
+    return {T(0),
+            T(-0.0),
+            T(-1),
+            std::numeric_limits<T>::quiet_NaN(),
+            std::numeric_limits<T>::infinity(),
             -std::numeric_limits<T>::infinity()};
 }
 
 template <class T>
 std::vector<T> negative_or_non_finite() {
-    return {T(-1), -std::numeric_limits<T>::denorm_min(), std::numeric_limits<T>::quiet_NaN(),
-            std::numeric_limits<T>::infinity(), -std::numeric_limits<T>::infinity()};
+    return {T(-1), -std::numeric_limits<T>::denorm_min(), std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::infinity(),
+            -std::numeric_limits<T>::infinity()};
 }
 
 template <class T>
@@ -114,7 +118,8 @@ TEST_CASE_TEMPLATE("make_convex_hull rejects an empty cloud, infinite coordinate
     CHECK_REJECTED(make_convex_hull(triangle), "make_convex_hull", "coplanar");
 }
 
-TEST_CASE_TEMPLATE("ConvexPolyhedron rejects too few faces, two-vertex faces, unused vertices and infinite vertices", T, float, double) {
+TEST_CASE_TEMPLATE("ConvexPolyhedron rejects too few faces, two-vertex faces, unused vertices and infinite vertices", T, float,
+                   double) {
     const ConvexPolyhedron<T> cube = unit_cube_hull<T>();
     std::vector<std::vector<std::uint32_t>> faces;
     for (const auto& f : cube.faces())
@@ -135,8 +140,8 @@ TEST_CASE_TEMPLATE("ConvexPolyhedron rejects too few faces, two-vertex faces, un
 }
 
 TEST_CASE_TEMPLATE("mass_properties rejects infinite density for every shape kind", T, float, double) {
-    const Shape<T> shapes[] = {Sphere<T>(T(1)), Box<T>(T(1), T(1), T(1)), Capsule<T>(T(1), T(1)),
-                               Cylinder<T>(T(1), T(1)), Cone<T>(T(1), T(1)), unit_cube_hull<T>()};
+    const Shape<T> shapes[] = {Sphere<T>(T(1)),         Box<T>(T(1), T(1), T(1)), Capsule<T>(T(1), T(1)),
+                               Cylinder<T>(T(1), T(1)), Cone<T>(T(1), T(1)),      unit_cube_hull<T>()};
     for (const Shape<T>& s : shapes) {
         CAPTURE(shape_name(s));
         CHECK_REJECTED(mass_properties(s, std::numeric_limits<T>::infinity()), "mass_properties", "density");
@@ -207,7 +212,8 @@ TEST_CASE_TEMPLATE("every WorldSettings field is checked by the constructor, set
 
 // Bodies -----------------------------------------------------------------------------------------
 
-TEST_CASE_TEMPLATE("body definitions with bad damping, gravity scale, mass, density or pose are rejected and leave no body", T, float, double) {
+TEST_CASE_TEMPLATE("body definitions with bad damping, gravity scale, mass, density or pose are rejected and leave no body", T,
+                   float, double) {
     World<T> world;
     const auto cube = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
     const char* where = "World::create_body";
@@ -285,7 +291,8 @@ TEST_CASE_TEMPLATE("body setters reject non-finite and negative values, name the
         CHECK_REJECTED(b.apply_linear_impulse(bad), "Body::apply_linear_impulse", "impulse");
         CHECK_REJECTED(b.apply_angular_impulse(bad), "Body::apply_angular_impulse", "impulse");
         CHECK_REJECTED(b.set_gravity_scale(v), "Body::set_gravity_scale", "scale");
-        CHECK_REJECTED(world.set_transform(id, Vec3<T>::zero(), Quat<T>{v, T(0), T(0), T(0)}), "World::set_transform", "orientation");
+        CHECK_REJECTED(world.set_transform(id, Vec3<T>::zero(), Quat<T>{v, T(0), T(0), T(0)}), "World::set_transform",
+                       "orientation");
     }
     for (const T v : negative_or_non_finite<T>()) {
         CAPTURE(v);
@@ -338,7 +345,8 @@ TEST_CASE_TEMPLATE("set_mass_properties rejects bad mass, an off-centre centre a
 
 // Handles ----------------------------------------------------------------------------------------
 
-TEST_CASE_TEMPLATE("stale, default and out-of-range handles are reported by every World method that takes a BodyId", T, float, double) {
+TEST_CASE_TEMPLATE("stale, default and out-of-range handles are reported by every World method that takes a BodyId", T, float,
+                   double) {
     World<T> world;
     const BodyId live = world.create_body(Sphere<T>(T(0.5)));
     const BodyId stale = world.create_body(Sphere<T>(T(0.5)));
@@ -348,8 +356,9 @@ TEST_CASE_TEMPLATE("stale, default and out-of-range handles are reported by ever
         BodyId id;
         const char* message;
     };
-    for (const Handle& h : {Handle{stale, "stale body handle"}, Handle{BodyId{}, "invalid body handle"},
-                            Handle{BodyId{1000, 0}, "stale body handle"}, Handle{BodyId{live.index, live.generation + 1}, "stale"}}) {
+    for (const Handle& h :
+         {Handle{stale, "stale body handle"}, Handle{BodyId{}, "invalid body handle"},
+          Handle{BodyId{1000, 0}, "stale body handle"}, Handle{BodyId{live.index, live.generation + 1}, "stale"}}) {
         CAPTURE(h.id.index);
         CAPTURE(h.id.generation);
         CHECK_FALSE(world.contains(h.id));
@@ -420,17 +429,19 @@ TEST_CASE_TEMPLATE("regression: shape sizes beyond what the narrow phase can squ
     CHECK(rejection([&] { (void)Capsule<T>(T(1), small); }) == "accepted");
 }
 
-TEST_CASE_TEMPLATE("regression: shapes at the ends of the size range collide with finite unit-normal contacts", T, float, double) {
+TEST_CASE_TEMPLATE("regression: shapes at the ends of the size range collide with finite unit-normal contacts", T, float,
+                   double) {
     for (const T s : {ScalarTraits<T>::min_size, ScalarTraits<T>::max_size}) {
         CAPTURE(s);
         const T f = s == ScalarTraits<T>::min_size ? T(1.6) : T(0.6);  // the other sizes, inside the range
-        const Shape<T> shapes[] = {Sphere<T>(s), Box<T>(s, f * s, T(0.9) * f * s), Capsule<T>(f * s, s),
-                                   Cylinder<T>(s, f * s), Cone<T>(s, f * s)};
+        const Shape<T> shapes[] = {Sphere<T>(s), Box<T>(s, f * s, T(0.9) * f * s), Capsule<T>(f * s, s), Cylinder<T>(s, f * s),
+                                   Cone<T>(s, f * s)};
         int hits = 0, bad = 0;
         for (const Shape<T>& a : shapes)
             for (const Shape<T>& b : shapes)
                 for (int k = 0; k < 8; ++k) {
-                    const Transform<T> ta{Vec3<T>::zero(), Quat<T>::from_axis_angle(normalized(Vec3<T>{T(1), T(2), T(3)}), T(0.4) * T(k))};
+                    const Transform<T> ta{Vec3<T>::zero(),
+                                          Quat<T>::from_axis_angle(normalized(Vec3<T>{T(1), T(2), T(3)}), T(0.4) * T(k))};
                     const Transform<T> tb{Vec3<T>{T(0.4), T(0.3) * T(k % 3), T(-0.2)} * s,
                                           Quat<T>::from_axis_angle(normalized(Vec3<T>{T(-1), T(2), T(1)}), T(0.7) * T(k))};
                     const Penetration<T> c = collide(a, ta, b, tb);
@@ -450,7 +461,8 @@ TEST_CASE_TEMPLATE("regression: shapes at the ends of the size range collide wit
     }
 }
 
-TEST_CASE_TEMPLATE("regression: a density or mass whose mass or inertia overflows is rejected before a body exists", T, float, double) {
+TEST_CASE_TEMPLATE("regression: a density or mass whose mass or inertia overflows is rejected before a body exists", T, float,
+                   double) {
     // Float: a 2e6 m cube of density 1e30 has a mass of 8e48 kg, infinite in float. mass_properties
     // returned infinity (and an infinite inertia); create_body took a slot, then threw from
     // set_mass_properties and left a half-made body alive in the world.
@@ -476,7 +488,8 @@ TEST_CASE_TEMPLATE("regression: a density or mass whose mass or inertia overflow
     CHECK(bodies == 0);
 }
 
-TEST_CASE_TEMPLATE("regression: set_mass_properties rejects an inertia that is not symmetric positive definite", T, float, double) {
+TEST_CASE_TEMPLATE("regression: set_mass_properties rejects an inertia that is not symmetric positive definite", T, float,
+                   double) {
     // Positive diagonal and invertible, so it passed the old check, but indefinite (eigenvalues 3,
     // -1, 1): a negative moment of inertia lets the solver add energy.
     World<T> world;
@@ -493,13 +506,15 @@ TEST_CASE_TEMPLATE("regression: set_mass_properties rejects an inertia that is n
     CHECK(rejection([&] { b.set_mass_properties(m); }) == "accepted");
 }
 
-TEST_CASE_TEMPLATE("regression: collide and mpr reject a non-unit orientation instead of colliding a sheared shape", T, float, double) {
+TEST_CASE_TEMPLATE("regression: collide and mpr reject a non-unit orientation instead of colliding a sheared shape", T, float,
+                   double) {
     // (1, 1, 0, 0) has |q|² = 2: rotate() with it scales and shears, so the query answered for a
     // different shape with a normal of length 2.
     const Box<T> box(T(0.5), T(0.5), T(0.5));
     const Transform<T> sheared{Vec3<T>::zero(), Quat<T>{T(1), T(1), T(0), T(0)}};
     const Transform<T> above{Vec3<T>{T(0), T(0.9), T(0)}, Quat<T>::identity()};
-    CHECK_REJECTED(collide(Shape<T>(box), sheared, Shape<T>(box), above), "collide", "pose_a.orientation must be a unit quaternion");
+    CHECK_REJECTED(collide(Shape<T>(box), sheared, Shape<T>(box), above), "collide",
+                   "pose_a.orientation must be a unit quaternion");
     CHECK_REJECTED(mpr_penetration(box, above, box, sheared), "mpr_penetration", "pose_b.orientation must be a unit");
     CHECK_REJECTED(mpr_intersect(box, sheared, box, above), "mpr_intersect", "unit");
     // Accepted: unit within round-off of the precision.

@@ -12,7 +12,8 @@
 
 using namespace xeno;
 
-TEST_CASE_TEMPLATE("3,000 spheres spawned at one point: default settings keep each step to the contact budget", T, float, double) {
+TEST_CASE_TEMPLATE("3,000 spheres spawned at one point: default settings keep each step to the contact budget", T, float,
+                   double) {
     World<T> w;
     const auto sphere = std::make_shared<const Shape<T>>(Sphere<T>(T(0.5)));
     BodyDef<T> d;

@@ -42,7 +42,8 @@ T deepest_overlap(const World<T>& w, const std::vector<BodyId>& ids) {
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("a crowd spawned at one point is thinned to the budget, keeps its momentum and separates without NaN", T, float, double) {
+TEST_CASE_TEMPLATE("a crowd spawned at one point is thinned to the budget, keeps its momentum and separates without NaN", T,
+                   float, double) {
     WorldSettings<T> s;
     s.gravity = Vec3<T>::zero();
     s.max_contact_pairs = 4000;
@@ -105,7 +106,8 @@ TEST_CASE_TEMPLATE("thinning never drops a pair with a static side nor the pairs
     CHECK(floor_pairs == n);
     CHECK(stack_pairs == 3);
     for (int i = 0; i < 29; ++i) w.step(T(1) / T(60));
-    for (int i = 0; i < 3; ++i) CHECK(std::abs(w.body(stack[static_cast<std::size_t>(i)]).position().y - (T(0.5) + T(i))) < T(0.01));
+    for (int i = 0; i < 3; ++i)
+        CHECK(std::abs(w.body(stack[static_cast<std::size_t>(i)]).position().y - (T(0.5) + T(i))) < T(0.01));
 }
 
 TEST_CASE_TEMPLATE("max_contact_pairs below 1 is rejected", T, float, double) {

@@ -25,8 +25,8 @@ struct Run {
 // with contacts (ragdoll), and a plate carrying 36 boxes (more contacts on one body than the
 // solver has colours: its overflow rows, docs/solver.md, "Colours").
 constexpr Run runs[] = {
-    {"mixed-pile", 300}, {"rain", 300},      {"pyramid", 120},        {"dominoes", 300}, {"seesaw", 180},
-    {"edge-edge", 120},  {"heavy-on-light", 120}, {"incline", 180}, {"ragdoll", 180}, {"loaded-plate", 120},
+    {"mixed-pile", 300}, {"rain", 300},           {"pyramid", 120}, {"dominoes", 300}, {"seesaw", 180},
+    {"edge-edge", 120},  {"heavy-on-light", 120}, {"incline", 180}, {"ragdoll", 180},  {"loaded-plate", 120},
 };
 
 template <class T>
@@ -36,7 +36,8 @@ void loaded_plate(xeno::World<T>& world) {
     xeno::scenes::add_box(world, Vec3<T>{T(4), T(0.1), T(4)}, Vec3<T>{T(0), T(0.1), T(0)});
     for (int i = 0; i < 6; ++i)
         for (int k = 0; k < 6; ++k)
-            xeno::scenes::add_box(world, Vec3<T>{T(0.4), T(0.4), T(0.4)}, Vec3<T>{T(-3.5) + T(1.4) * T(i), T(0.6), T(-3.5) + T(1.4) * T(k)});
+            xeno::scenes::add_box(world, Vec3<T>{T(0.4), T(0.4), T(0.4)},
+                                  Vec3<T>{T(-3.5) + T(1.4) * T(i), T(0.6), T(-3.5) + T(1.4) * T(k)});
 }
 
 template <class T>

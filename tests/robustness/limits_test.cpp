@@ -36,12 +36,12 @@ std::string rejection(const std::function<void()>& f) {
     return "accepted";
 }
 
-#define CHECK_REJECTED(expression, where, what)                                                  \
-    do {                                                                                         \
-        const std::string message_ = rejection([&] { (void)(expression); });                    \
-        INFO(#expression << "  ->  " << message_);                                               \
-        CHECK(message_.find(where) != std::string::npos);                                        \
-        CHECK(message_.find(what) != std::string::npos);                                         \
+#define CHECK_REJECTED(expression, where, what)                              \
+    do {                                                                     \
+        const std::string message_ = rejection([&] { (void)(expression); }); \
+        INFO(#expression << "  ->  " << message_);                           \
+        CHECK(message_.find(where) != std::string::npos);                    \
+        CHECK(message_.find(what) != std::string::npos);                     \
     } while (false)
 
 template <class T>
@@ -64,8 +64,11 @@ void settled_pile(World<T>& world) {
     ground.type = BodyType::static_body;
     ground.position = {T(0), T(-0.5), T(0)};
     world.create_body(Box<T>(T(20), T(0.5), T(20)), ground);
-    const std::vector<Vec3<T>> rock = {{T(-0.3), T(-0.2), T(-0.25)}, {T(0.3), T(-0.2), T(-0.25)}, {T(0), T(-0.2), T(0.3)},
-                                       {T(0), T(0.3), T(0)}, {T(0.1), T(0.1), T(0.1)}};
+    const std::vector<Vec3<T>> rock = {{T(-0.3), T(-0.2), T(-0.25)},
+                                       {T(0.3), T(-0.2), T(-0.25)},
+                                       {T(0), T(-0.2), T(0.3)},
+                                       {T(0), T(0.3), T(0)},
+                                       {T(0.1), T(0.1), T(0.1)}};
     const std::shared_ptr<const Shape<T>> kinds[] = {
         std::make_shared<const Shape<T>>(make_convex_hull(rock).polyhedron),
         std::make_shared<const Shape<T>>(Sphere<T>(T(0.3))),
@@ -99,16 +102,23 @@ TEST_CASE_TEMPLATE("regression: forces and torques that overflow when added up a
     CHECK(b.force() == Vec3<T>{big, T(0), T(0)});
     CHECK(b.torque() == Vec3<T>::zero());
     // A finite force at a far point whose moment overflows.
-    CHECK_REJECTED(b.apply_force_at(Vec3<T>{T(0), big / T(4), T(0)}, Vec3<T>{big / T(4), T(0), T(0)}), "Body::apply_force_at", "torque");
+    CHECK_REJECTED(b.apply_force_at(Vec3<T>{T(0), big / T(4), T(0)}, Vec3<T>{big / T(4), T(0), T(0)}), "Body::apply_force_at",
+                   "torque");
     CHECK(b.torque() == Vec3<T>::zero());
     b.apply_torque(Vec3<T>{T(0), T(0), big / T(1e6)});
     const Vec3<T> torque = b.torque();
     CHECK_REJECTED(b.apply_torque(Vec3<T>{T(0), T(0), big}), "Body::apply_torque", "accumulated torque.z");
     CHECK(b.torque() == torque);
     // A force that is finite but whose acceleration is not (a light body).
-    const BodyId light = world.create_body(Sphere<T>(T(0.1)), [] { BodyDef<T> d; d.mass = T(1e-3); d.position = {T(5), T(0), T(0)}; return d; }());
+    const BodyId light = world.create_body(Sphere<T>(T(0.1)), [] {
+        BodyDef<T> d;
+        d.mass = T(1e-3);
+        d.position = {T(5), T(0), T(0)};
+        return d;
+    }());
     CHECK_REJECTED(world.body(light).apply_force(Vec3<T>{T(0), big / T(2), T(0)}), "Body::apply_force", "force / mass");
-    CHECK_REJECTED(world.body(light).apply_linear_impulse(Vec3<T>{T(0), big / T(2), T(0)}), "Body::apply_linear_impulse", "linear_velocity.y");
+    CHECK_REJECTED(world.body(light).apply_linear_impulse(Vec3<T>{T(0), big / T(2), T(0)}), "Body::apply_linear_impulse",
+                   "linear_velocity.y");
     CHECK(world.body(light).force() == Vec3<T>::zero());
     CHECK(world.body(light).linear_velocity() == Vec3<T>::zero());
     // Gravity scales are limited so that gravity × scale stays finite.
@@ -125,7 +135,8 @@ TEST_CASE_TEMPLATE("regression: forces and torques that overflow when added up a
 
 // 5. The speed cap --------------------------------------------------------------------------------
 
-TEST_CASE_TEMPLATE("regression: the speed cap holds speeds whose square overflows instead of stopping the body", T, float, double) {
+TEST_CASE_TEMPLATE("regression: the speed cap holds speeds whose square overflows instead of stopping the body", T, float,
+                   double) {
     const T huge = std::is_same_v<T, float> ? T(1e20) : T(1e160);
     WorldSettings<T> settings;
     settings.gravity = Vec3<T>::zero();
@@ -144,7 +155,8 @@ TEST_CASE_TEMPLATE("regression: the speed cap holds speeds whose square overflow
     CHECK(test::near(b.angular_velocity().y, settings.max_rotation_per_step * T(60), T(1e-4)));
 }
 
-TEST_CASE_TEMPLATE("regression: a huge spin or torque on a body in a pile is capped before the solver, not turned into NaN", T, float, double) {
+TEST_CASE_TEMPLATE("regression: a huge spin or torque on a body in a pile is capped before the solver, not turned into NaN", T,
+                   float, double) {
     // The spin cap came after the gyroscopic term and the contact rows, which overflowed first
     // (found by the world fuzzer): every body of the pile became NaN.
     for (const T big : {T(1e28), std::numeric_limits<T>::max() / T(2)}) {
@@ -170,7 +182,8 @@ TEST_CASE_TEMPLATE("regression: orientations with tiny or huge components keep t
     const T huge = std::is_same_v<T, float> ? T(1e20) : T(1e160);
     // 60° about (1, 2, 2)/3.
     const Quat<T> unit{std::sqrt(T(3)) / T(2), T(0.5) / T(3), T(1) / T(3), T(1) / T(3)};
-    for (const T scale : {tiny, huge, T(1e-30) * (std::is_same_v<T, float> ? T(1) : T(1e-200)), std::numeric_limits<T>::max() / T(2)}) {
+    for (const T scale :
+         {tiny, huge, T(1e-30) * (std::is_same_v<T, float> ? T(1) : T(1e-200)), std::numeric_limits<T>::max() / T(2)}) {
         CAPTURE(scale);
         const Quat<T> q = unit * scale;
         CHECK(test::same_rotation(normalized(q), unit, T(1e-6)));
@@ -190,7 +203,8 @@ TEST_CASE_TEMPLATE("regression: orientations with tiny or huge components keep t
 
 // 7. Compound children beyond the size range ------------------------------------------------------
 
-TEST_CASE_TEMPLATE("regression: a compound child beyond the size range is rejected, not given infinite bounds", T, float, double) {
+TEST_CASE_TEMPLATE("regression: a compound child beyond the size range is rejected, not given infinite bounds", T, float,
+                   double) {
     for (const T far : {std::numeric_limits<T>::max() / T(4), ScalarTraits<T>::max_size * T(2)}) {
         CAPTURE(far);
         std::vector<CompoundChild<T>> children(2, CompoundChild<T>{Shape<T>(Box<T>(T(1), T(1), T(1))), {}});
@@ -209,9 +223,11 @@ TEST_CASE_TEMPLATE("regression: a compound child beyond the size range is reject
 
 // 9. Time steps and length settings ---------------------------------------------------------------
 
-TEST_CASE_TEMPLATE("regression: step and fixed_time_step reject dt beyond 1 s; every dt up to it keeps a pile finite", T, float, double) {
+TEST_CASE_TEMPLATE("regression: step and fixed_time_step reject dt beyond 1 s; every dt up to it keeps a pile finite", T, float,
+                   double) {
     const T max_dt = T(1);
-    for (const T dt : {std::numeric_limits<T>::denorm_min(), std::numeric_limits<T>::min(), T(1e-30), T(1e-6), T(1) / T(60), T(0.25), max_dt}) {
+    for (const T dt : {std::numeric_limits<T>::denorm_min(), std::numeric_limits<T>::min(), T(1e-30), T(1e-6), T(1) / T(60),
+                       T(0.25), max_dt}) {
         CAPTURE(dt);
         World<T> world;
         settled_pile(world);
@@ -235,7 +251,8 @@ TEST_CASE_TEMPLATE("regression: step and fixed_time_step reject dt beyond 1 s; e
     CHECK(non_finite_bodies(world) == 0);
 }
 
-TEST_CASE_TEMPLATE("regression: lengths and speeds in the settings beyond their limit are rejected; at it a pile stays finite", T, float, double) {
+TEST_CASE_TEMPLATE("regression: lengths and speeds in the settings beyond their limit are rejected; at it a pile stays finite", T,
+                   float, double) {
     using Edit = std::function<void(WorldSettings<T>&, T)>;
     const std::vector<std::pair<const char*, Edit>> fields = {
         {"speculative_distance", [](WorldSettings<T>& s, T v) { s.speculative_distance = v; }},
@@ -264,7 +281,8 @@ TEST_CASE_TEMPLATE("regression: lengths and speeds in the settings beyond their 
 
 // 10. Settings enums and counts -------------------------------------------------------------------
 
-TEST_CASE_TEMPLATE("regression: settings reject unknown enum values and iteration counts that make a step endless", T, float, double) {
+TEST_CASE_TEMPLATE("regression: settings reject unknown enum values and iteration counts that make a step endless", T, float,
+                   double) {
     World<T> world;
     WorldSettings<T> s;
     s.broad_phase = static_cast<BroadPhaseKind>(9);
@@ -320,8 +338,10 @@ TEST_CASE_TEMPLATE("regression: error messages name the bad component and its va
     children[1].local = {Vec3<T>{T(0), T(0), nan}, Quat<T>::identity()};
     CHECK_REJECTED(Compound<T>(children), "child 1 local.position.z", "(got nan)");
     const BodyId id = world.create_body(Sphere<T>(T(1)));
-    CHECK_REJECTED(world.body(id).set_linear_velocity(Vec3<T>{T(0), T(0), nan}), "Body::set_linear_velocity: velocity.z", "(got nan)");
-    CHECK_REJECTED(world.set_transform(id, Vec3<T>{T(0), inf, T(0)}, Quat<T>::identity()), "World::set_transform: position.y", "(got inf)");
+    CHECK_REJECTED(world.body(id).set_linear_velocity(Vec3<T>{T(0), T(0), nan}), "Body::set_linear_velocity: velocity.z",
+                   "(got nan)");
+    CHECK_REJECTED(world.set_transform(id, Vec3<T>{T(0), inf, T(0)}, Quat<T>::identity()), "World::set_transform: position.y",
+                   "(got inf)");
     CHECK_REJECTED(world.query_point(Vec3<T>{T(0), T(0), nan}), "World::query_point: point.z", "(got nan)");
     CHECK_REJECTED(world.raycast(Ray<T>{Vec3<T>{nan, T(0), T(0)}}), "World::raycast: ray.origin.x", "(got nan)");
     CHECK_REJECTED(collide(Shape<T>(Sphere<T>(T(1))), Transform<T>{Vec3<T>{T(0), nan, T(0)}, Quat<T>::identity()},
@@ -329,7 +349,8 @@ TEST_CASE_TEMPLATE("regression: error messages name the bad component and its va
                    "pose_a.position.y", "(got nan)");
 }
 
-TEST_CASE_TEMPLATE("a body at a huge finite speed beside a destroyed one keeps finite boxes and never meets the dead slot", T, float, double) {
+TEST_CASE_TEMPLATE("a body at a huge finite speed beside a destroyed one keeps finite boxes and never meets the dead slot", T,
+                   float, double) {
     // Found by the world fuzzer: a velocity of 10^38 made the body's broad-phase box infinite,
     // and an infinite box overlapped the empty box of a free slot, so a destroyed body reached
     // the narrow phase. Boxes and margins now use the speed within the integrator's cap.
@@ -346,7 +367,8 @@ TEST_CASE_TEMPLATE("a body at a huge finite speed beside a destroyed one keeps f
     CHECK(length(w.body(fast).linear_velocity()) <= w.settings().max_linear_speed * T(1.0001));
 }
 
-TEST_CASE_TEMPLATE("a kinematic body at the largest finite speed touching a dynamic one leaves every state finite", T, float, double) {
+TEST_CASE_TEMPLATE("a kinematic body at the largest finite speed touching a dynamic one leaves every state finite", T, float,
+                   double) {
     // Found by the world fuzzer: a kinematic body set to 1.5e308 m/s entered the contact rows
     // uncapped and made both bodies NaN; velocities now enter the solver within the caps.
     World<T> w;

@@ -24,8 +24,8 @@ std::string first_bad_body(const World<T>& world) {
     world.for_each_body([&](BodyId id, const Body<T>& b) {
         if (!bad.empty()) return;
         const Quat<T>& q = b.orientation();
-        const bool finite = is_finite(b.position()) && is_finite(q) && is_finite(b.linear_velocity()) &&
-                            is_finite(b.angular_velocity());
+        const bool finite =
+            is_finite(b.position()) && is_finite(q) && is_finite(b.linear_velocity()) && is_finite(b.angular_velocity());
         const T unit_error = std::abs(std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z) - T(1));
         if (finite && unit_error <= T(1e-3)) return;
         std::ostringstream os;

@@ -108,7 +108,7 @@ TEST_CASE_TEMPLATE("hull of points on a box's faces and edges has 6 quads over 8
         Vec3<T> p = rng.in_box(h);
         const int axis = static_cast<int>(rng.index(3));
         p[axis] = rng.uniform() < 0.5 ? -h[axis] : h[axis];  // on a face
-        if (i % 3 == 0) {                                     // on an edge
+        if (i % 3 == 0) {                                    // on an edge
             const int other = (axis + 1 + static_cast<int>(rng.index(2))) % 3;
             p[other] = rng.uniform() < 0.5 ? -h[other] : h[other];
         }
@@ -264,7 +264,7 @@ TEST_CASE_TEMPLATE("hull of a tetrahedron's corners is that tetrahedron", T, flo
     const ConvexHull<T> hull = make_convex_hull(points);
     CHECK(hull.polyhedron.vertices().size() == 4);
     CHECK(hull.polyhedron.faces().size() == 4);
-    CHECK(near(hull.polyhedron.volume(), T(1)));  // 2 · 3 · 1 / 6
+    CHECK(near(hull.polyhedron.volume(), T(1)));                 // 2 · 3 · 1 / 6
     CHECK(near(hull.shift, Vec3<T>{T(0.5), T(0.75), T(0.25)}));  // the centroid: mean of the corners
     for (const auto& face : hull.polyhedron.faces()) CHECK(face.count == 3);
 }
@@ -313,7 +313,8 @@ TEST_CASE_TEMPLATE("hulls from a millimetre to a kilometre, near and far from th
             const T volume = size.x * size.y * size.z;
             CHECK(std::abs(p.volume() / volume - T(1)) <= T(10) * test::tol<T>());
             CHECK(length(hull.shift - offset) <= T(10) * test::tol<T>() * (scale + length(offset)));
-            CHECK(largest_height_outside(hull, points) <= T(4) * hull_epsilon(points) + T(8) * ScalarTraits<T>::epsilon * length(offset));
+            CHECK(largest_height_outside(hull, points) <=
+                  T(4) * hull_epsilon(points) + T(8) * ScalarTraits<T>::epsilon * length(offset));
         }
     }
 }

@@ -52,7 +52,8 @@ TEST_CASE_TEMPLATE("hill climbing and scanning agree on a prism with many sides"
     }
 }
 
-TEST_CASE_TEMPLATE("the convexity check's box tree finds a vertex in front of a plane exactly when a loop over the vertices does", T, float, double) {
+TEST_CASE_TEMPLATE("the convexity check's box tree finds a vertex in front of a plane exactly when a loop over the vertices does",
+                   T, float, double) {
     // The constructor asks detail::VertexBoxTree whether any vertex is more than a tolerance in
     // front of a face plane (issue 13 item 13: the loop over every vertex for every face was
     // quadratic). Its answers must be the loop's, to the last rounding: planes are placed so the
@@ -76,8 +77,12 @@ TEST_CASE_TEMPLATE("the convexity check's box tree finds a vertex in front of a 
             T top = -ScalarTraits<T>::infinity;
             for (const Vec3<T>& p : v) top = std::max(top, dot(n, p));
             // At the limit, a few rounding units either side, or well clear of it.
-            const T shifts[] = {T(0), ScalarTraits<T>::epsilon * std::abs(top), -ScalarTraits<T>::epsilon * std::abs(top),
-                                T(4) * ScalarTraits<T>::epsilon * std::abs(top), T(0.5), T(-0.5)};
+            const T shifts[] = {T(0),
+                                ScalarTraits<T>::epsilon * std::abs(top),
+                                -ScalarTraits<T>::epsilon * std::abs(top),
+                                T(4) * ScalarTraits<T>::epsilon * std::abs(top),
+                                T(0.5),
+                                T(-0.5)};
             for (const T shift : shifts) {
                 const T plane = top - tolerance + shift;
                 bool loop = false;

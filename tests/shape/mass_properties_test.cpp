@@ -30,7 +30,7 @@ Revolved integrate_revolution(const std::function<double(double)>& radius, doubl
         const double area = pi * r * r;
         m += w * area;
         my += w * area * y;
-        iy += w * pi * r * r * r * r / 2;              // disc about its axis
+        iy += w * pi * r * r * r * r / 2;                    // disc about its axis
         ix0 += w * (pi * r * r * r * r / 4 + area * y * y);  // disc about x through y = 0
     }
     const double s = rho * h / 3;
@@ -82,11 +82,11 @@ TEST_CASE_TEMPLATE("cylinder, cone and capsule closed forms match integration ov
                   integrate_revolution([](double y) { return 0.5 * (1.5 - y) / 2.0; }, -0.5, 1.5, 3));
     const double r = 0.25, h = 0.6;
     check_against(mass_properties(Capsule<T>(T(r), T(h)), T(7)), integrate_revolution(
-                      [=](double y) {
-                          const double over = std::max(0.0, std::abs(y) - h);
-                          return std::sqrt(std::max(0.0, r * r - over * over));
-                      },
-                      -h - r, h + r, 7));
+                                                                     [=](double y) {
+                                                                         const double over = std::max(0.0, std::abs(y) - h);
+                                                                         return std::sqrt(std::max(0.0, r * r - over * over));
+                                                                     },
+                                                                     -h - r, h + r, 7));
 }
 
 TEST_CASE_TEMPLATE("regular tetrahedron has isotropic inertia m a²/20", T, float, double) {

@@ -39,7 +39,7 @@ struct Config {
 }  // namespace xeno::test
 
 /// Every scalar with the default settings and with sleeping off.
-#define XENO_TEST_CONFIGS                                                                              \
+#define XENO_TEST_CONFIGS                                                                                \
     xeno::test::Config<float, true>, xeno::test::Config<double, true>, xeno::test::Config<float, false>, \
         xeno::test::Config<double, false>
 

@@ -96,12 +96,12 @@ public:
 private:
     static constexpr std::uint32_t kNull = 0xffffffffu;
     struct Node {
-        Aabb<T> box;             ///< fat box for a leaf, union of the children for an inner node
-        std::uint32_t parent;    ///< kNull at the root; next free node when on the free list
-        std::uint32_t child1;    ///< kNull for a leaf
+        Aabb<T> box;           ///< fat box for a leaf, union of the children for an inner node
+        std::uint32_t parent;  ///< kNull at the root; next free node when on the free list
+        std::uint32_t child1;  ///< kNull for a leaf
         std::uint32_t child2;
-        std::uint32_t proxy;     ///< the leaf's proxy id
-        std::int32_t height;     ///< 0 for a leaf, -1 when free
+        std::uint32_t proxy;  ///< the leaf's proxy id
+        std::int32_t height;  ///< 0 for a leaf, -1 when free
         bool leaf() const { return child1 == kNull; }
     };
     struct BuildItem {
@@ -138,7 +138,7 @@ private:
     std::uint32_t free_ = kNull;
     std::size_t proxy_count_ = 0;
     std::size_t reinsertions_ = 0;
-    std::size_t edits_since_build_ = 0;   ///< inserts, removes and reinsertions
+    std::size_t edits_since_build_ = 0;  ///< inserts, removes and reinsertions
     T margin_;
 };
 
@@ -464,7 +464,7 @@ std::uint32_t AabbTree<T>::balance(std::uint32_t ia) {
     Node& c = nodes_[ic];
     const std::uint32_t i_f = c.child1, ig = c.child2;
     const bool f_taller = nodes_[i_f].height > nodes_[ig].height;
-    const std::uint32_t up = f_taller ? i_f : ig;     // stays with C
+    const std::uint32_t up = f_taller ? i_f : ig;    // stays with C
     const std::uint32_t down = f_taller ? ig : i_f;  // moves to A
     // C takes A's place.
     c.child1 = ia;
@@ -508,12 +508,20 @@ std::uint32_t AabbTree<T>::build(std::size_t begin, std::size_t end, std::uint32
                      [axis](const BuildItem& x, const BuildItem& y) { return x.centre[axis] < y.centre[axis]; });
     const std::uint32_t left = build(begin, mid, node);
     const std::uint32_t right = build(mid, end, node);
-    nodes_[node] = {merged(nodes_[left].box, nodes_[right].box), parent, left, right, 0,
+    nodes_[node] = {merged(nodes_[left].box, nodes_[right].box),
+                    parent,
+                    left,
+                    right,
+                    0,
                     1 + std::max(nodes_[left].height, nodes_[right].height)};
     return node;
 }
 
-namespace f32 { using AabbTree = xeno::AabbTree<float>; }
-namespace f64 { using AabbTree = xeno::AabbTree<double>; }
+namespace f32 {
+using AabbTree = xeno::AabbTree<float>;
+}
+namespace f64 {
+using AabbTree = xeno::AabbTree<double>;
+}
 
 }  // namespace xeno

@@ -50,8 +50,8 @@ private:
     /// A proxy's box as the sweep reads it. An empty box is stored with every minimum +inf and
     /// every maximum -inf: it sorts last and overlaps nothing.
     struct Item {
-        T min, max;                      ///< on the sweep axis
-        T min_u, max_u, min_v, max_v;    ///< on the two cross axes
+        T min, max;                    ///< on the sweep axis
+        T min_u, max_u, min_v, max_v;  ///< on the two cross axes
         std::uint32_t proxy;
         std::uint16_t first_u, first_v;  ///< its first column cell on each cross axis
         bool empty() const { return max < min; }
@@ -107,7 +107,8 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
     if (live >= 256) {
         sizes_.clear();
         for (std::size_t i = 0, stride = std::max<std::size_t>(1, n / 1024); i < n; i += stride)
-            if (!boxes[i].empty()) sizes_.push_back(std::max(boxes[i].max[u] - boxes[i].min[u], boxes[i].max[v] - boxes[i].min[v]));
+            if (!boxes[i].empty())
+                sizes_.push_back(std::max(boxes[i].max[u] - boxes[i].min[u], boxes[i].max[v] - boxes[i].min[v]));
         const auto middle = sizes_.begin() + static_cast<std::ptrdiff_t>(sizes_.size() / 2);
         std::nth_element(sizes_.begin(), middle, sizes_.end());
         const T size = sizes_.empty() ? T(0) : *middle;
@@ -136,7 +137,8 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
         order_.clear();
         axis_ = axis;
     }
-    for (std::size_t i = order_.size(); i < n; ++i) order_.push_back({T(0), T(0), T(0), T(0), T(0), T(0), static_cast<std::uint32_t>(i), 0, 0});
+    for (std::size_t i = order_.size(); i < n; ++i)
+        order_.push_back({T(0), T(0), T(0), T(0), T(0), T(0), static_cast<std::uint32_t>(i), 0, 0});
     for (Item& it : order_) {
         const Aabb<T>& b = boxes[it.proxy];
         if (b.empty()) {
@@ -208,7 +210,8 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
             for (const Item* b = a + 1; b != last && b->min <= max_a; ++b) {
                 // & rather than &&: the four outcomes are close to coin flips, and one
                 // well-predicted branch on their conjunction is faster than four mispredicted ones.
-                const bool cross = (a->min_u <= b->max_u) & (b->min_u <= a->max_u) & (a->min_v <= b->max_v) & (b->min_v <= a->max_v);
+                const bool cross =
+                    (a->min_u <= b->max_u) & (b->min_u <= a->max_u) & (a->min_v <= b->max_v) & (b->min_v <= a->max_v);
                 if (!cross) continue;
                 // Shared columns: only the one where both boxes are present first reports.
                 if (std::max(a->first_u, b->first_u) != cu || std::max(a->first_v, b->first_v) != cv) continue;
@@ -219,7 +222,11 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
     detail::sort_pairs_by_first(pairs, n, counts_, scratch_);
 }
 
-namespace f32 { using SweepAndPrune = xeno::SweepAndPrune<float>; }
-namespace f64 { using SweepAndPrune = xeno::SweepAndPrune<double>; }
+namespace f32 {
+using SweepAndPrune = xeno::SweepAndPrune<float>;
+}
+namespace f64 {
+using SweepAndPrune = xeno::SweepAndPrune<double>;
+}
 
 }  // namespace xeno

@@ -112,8 +112,8 @@ bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scala
 
 /// Pairs that go through MPR (not closed-form: round pairs, two boxes).
 template <class A, class B>
-constexpr bool answered_by_mpr = !is_round_pair<A, B> && !(std::is_same_v<A, Box<typename A::scalar_type>> &&
-                                                            std::is_same_v<B, Box<typename A::scalar_type>>);
+constexpr bool answered_by_mpr =
+    !is_round_pair<A, B> && !(std::is_same_v<A, Box<typename A::scalar_type>> && std::is_same_v<B, Box<typename A::scalar_type>>);
 
 /// Whether collide() should run an MPR pair as (B, A) and flip the answer: MPR and the least-depth
 /// expansion stop within tolerances along paths that depend on the order, so a pair that has two
@@ -213,9 +213,8 @@ Penetration<T> collide(const Shape<T>& a, const Transform<T>& pose_a, const Shap
 /// always; the world passes its linear_slop: shallower overlaps are within round-off of MPR's
 /// answer and cost nothing to leave, docs/collision.md, "Least depth").
 template <class T>
-ContactManifold<T> generate_contacts(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b,
-                                     const Transform<T>& pose_b, T margin,
-                                     T exact_depth_above = -ScalarTraits<T>::infinity) {
+ContactManifold<T> generate_contacts(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b,
+                                     T margin, T exact_depth_above = -ScalarTraits<T>::infinity) {
     return std::visit(
         [&](const auto& sa, const auto& sb) {
             using SA = std::decay_t<decltype(sa)>;
@@ -232,8 +231,8 @@ ContactManifold<T> generate_contacts(const Shape<T>& a, const Transform<T>& pose
 
 #ifdef XENO_COMPILED_LIB
 // Compiled mode (compiled.hpp): float and double are compiled once, in src/xeno_compiled.cpp.
-#define XENO_DETAIL_EXTERN_COLLIDE(T)                                                                                 \
-    extern template bool intersect<T>(const Shape<T>&, const Transform<T>&, const Shape<T>&, const Transform<T>&);          \
+#define XENO_DETAIL_EXTERN_COLLIDE(T)                                                                                      \
+    extern template bool intersect<T>(const Shape<T>&, const Transform<T>&, const Shape<T>&, const Transform<T>&);         \
     extern template Penetration<T> collide<T>(const Shape<T>&, const Transform<T>&, const Shape<T>&, const Transform<T>&); \
     extern template ContactManifold<T> generate_contacts<T>(const Shape<T>&, const Transform<T>&, const Shape<T>&,         \
                                                             const Transform<T>&, T, T);

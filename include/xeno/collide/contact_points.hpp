@@ -171,7 +171,8 @@ bool common_point(const SupportFace<T>& fa, const SupportFace<T>& fb, const Vec3
 /// D nearest the origin there, split back into its A and B parts and averaged. Falls inside
 /// both when the shapes overlap; used only when the support features do not overlap across n.
 template <class A, class B>
-Vec3<typename A::scalar_type> point_inside_both(const MinkowskiDifference<A, B>& md, const Penetration<typename A::scalar_type>& p) {
+Vec3<typename A::scalar_type> point_inside_both(const MinkowskiDifference<A, B>& md,
+                                                const Penetration<typename A::scalar_type>& p) {
     using T = typename A::scalar_type;
     const SupportPoint<T> v0 = md.interior();
     const Vec3<T> e = (p.point_a - p.point_b) - v0.v;
@@ -185,9 +186,9 @@ Vec3<typename A::scalar_type> point_inside_both(const MinkowskiDifference<A, B>&
 /// Contact points (A's frame) for the final unit normal n (A → B) and overlap h along it, by the
 /// contract at the top of this file. `inside`, if given, is a point of A ∩ B (A's frame).
 template <class A, class B>
-void place_contact_points(const MinkowskiDifference<A, B>& md, const Vec3<typename A::scalar_type>& n,
-                          typename A::scalar_type h, const Vec3<typename A::scalar_type>* inside,
-                          Vec3<typename A::scalar_type>& point_a, Vec3<typename A::scalar_type>& point_b) {
+void place_contact_points(const MinkowskiDifference<A, B>& md, const Vec3<typename A::scalar_type>& n, typename A::scalar_type h,
+                          const Vec3<typename A::scalar_type>* inside, Vec3<typename A::scalar_type>& point_a,
+                          Vec3<typename A::scalar_type>& point_b) {
     using T = typename A::scalar_type;
     const T tau = std::max(ScalarTraits<T>::geometric_tolerance, T(1e-7)) * md.scale();
     const SupportFace<T> fa = support_feature(md.shape_a(), n, tau);

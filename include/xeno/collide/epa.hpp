@@ -32,10 +32,10 @@ public:
     static constexpr int kMaxFaces = 2 * kMaxVertices - 4;  // Euler: a closed triangulated surface
 
     struct Face {
-        Vec3<T> normal;       ///< unit, outward
-        T distance;           ///< from the origin to the face's plane (normal · any vertex)
-        std::int16_t v[3];    ///< vertex indices, counter-clockwise seen from outside
-        std::int16_t adj[3];  ///< adj[k]: the face across edge v[k] → v[k+1]
+        Vec3<T> normal;           ///< unit, outward
+        T distance;               ///< from the origin to the face's plane (normal · any vertex)
+        std::int16_t v[3];        ///< vertex indices, counter-clockwise seen from outside
+        std::int16_t adj[3];      ///< adj[k]: the face across edge v[k] → v[k+1]
         std::int8_t adj_edge[3];  ///< which edge of adj[k] that is
         bool alive;
     };

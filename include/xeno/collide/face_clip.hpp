@@ -38,7 +38,7 @@ struct ManifoldPoint {
 template <class T>
 struct ContactManifold {
     static constexpr int capacity = 4;
-    Vec3<T> normal{};                                  ///< unit, world, from A to B
+    Vec3<T> normal{};                                 ///< unit, world, from A to B
     std::array<ManifoldPoint<T>, capacity> points{};  ///< the first `count` are valid
     int count = 0;
 };
@@ -143,7 +143,8 @@ int reduce_to_four(std::array<ManifoldPoint<T>, ClipPolygon<T>::capacity>& pts, 
 /// single-contact points (A's frame) used for point features and empty clips, with depth
 /// fallback_depth along n. Points deeper than -margin (metres) are kept.
 template <class A, class B>
-ContactManifold<typename A::scalar_type> build_manifold(const MinkowskiDifference<A, B>& md, const Vec3<typename A::scalar_type>& n,
+ContactManifold<typename A::scalar_type> build_manifold(const MinkowskiDifference<A, B>& md,
+                                                        const Vec3<typename A::scalar_type>& n,
                                                         const Vec3<typename A::scalar_type>& fallback_a,
                                                         const Vec3<typename A::scalar_type>& fallback_b,
                                                         typename A::scalar_type fallback_depth, typename A::scalar_type margin) {
@@ -168,15 +169,12 @@ ContactManifold<typename A::scalar_type> build_manifold(const MinkowskiDifferenc
     const bool a_polygon = face_a.count >= 3 && dot(face_a.normal, n) >= aligned;
     const bool b_polygon = face_b.count >= 3 && dot(face_b.normal, -n) >= aligned;
     bool reference_is_a;
-    if (a_polygon && b_polygon)
-        reference_is_a = dot(face_a.normal, n) + T(0.01) >= dot(face_b.normal, -n);
-    else if (a_polygon || b_polygon)
-        reference_is_a = a_polygon;
+    if (a_polygon && b_polygon) reference_is_a = dot(face_a.normal, n) + T(0.01) >= dot(face_b.normal, -n);
+    else if (a_polygon || b_polygon) reference_is_a = a_polygon;
     else if (face_a.count == 2 && face_b.count == 2 && std::abs(dot(face_a.normal, n)) >= aligned &&
              std::abs(dot(face_b.normal, n)) >= aligned)
         reference_is_a = true;
-    else
-        return single();  // a point feature: the single contact is exact
+    else return single();  // a point feature: the single contact is exact
 
     const SupportFace<T>& ref = reference_is_a ? face_a : face_b;
     const SupportFace<T>& inc = reference_is_a ? face_b : face_a;
@@ -232,7 +230,13 @@ ContactManifold<typename A::scalar_type> build_manifold(const MinkowskiDifferenc
     return out;
 }
 
-namespace f32 { using ContactManifold = xeno::ContactManifold<float>; using ManifoldPoint = xeno::ManifoldPoint<float>; }
-namespace f64 { using ContactManifold = xeno::ContactManifold<double>; using ManifoldPoint = xeno::ManifoldPoint<double>; }
+namespace f32 {
+using ContactManifold = xeno::ContactManifold<float>;
+using ManifoldPoint = xeno::ManifoldPoint<float>;
+}  // namespace f32
+namespace f64 {
+using ContactManifold = xeno::ContactManifold<double>;
+using ManifoldPoint = xeno::ManifoldPoint<double>;
+}  // namespace f64
 
 }  // namespace xeno

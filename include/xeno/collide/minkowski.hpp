@@ -22,8 +22,8 @@ namespace xeno {
 /// is not stored, so the portal vertices MPR shuffles every iteration stay small.
 template <class T>
 struct SupportPoint {
-    Vec3<T> v;  ///< metres, on the boundary of D
-    Vec3<T> a;  ///< metres, the point of A it came from
+    Vec3<T> v;                           ///< metres, on the boundary of D
+    Vec3<T> a;                           ///< metres, the point of A it came from
     Vec3<T> b() const { return a - v; }  ///< metres, the point of B
 };
 
@@ -133,7 +133,11 @@ private:
     mutable std::uint32_t hint_a_ = kNoHint, hint_b_ = kNoHint;  ///< last support vertices of polyhedra
 };
 
-namespace f32 { using SupportPoint = xeno::SupportPoint<float>; }
-namespace f64 { using SupportPoint = xeno::SupportPoint<double>; }
+namespace f32 {
+using SupportPoint = xeno::SupportPoint<float>;
+}
+namespace f64 {
+using SupportPoint = xeno::SupportPoint<double>;
+}
 
 }  // namespace xeno

@@ -38,15 +38,15 @@ namespace xeno {
 template <class T>
 struct Penetration {
     bool hit = false;
-    Vec3<T> normal{};   ///< unit, world frame, from A to B
+    Vec3<T> normal{};  ///< unit, world frame, from A to B
     /// world. collide(): on A's support plane along the normal and on or inside A within the
     /// depth (on A's surface where the two support features overlap), with
     /// point_a − point_b = depth · normal (contact_points.hpp). mpr_penetration(): the point of A
     /// where the centre line leaves A ⊖ B.
     Vec3<T> point_a{};
-    Vec3<T> point_b{};  ///< world, the same for B (on B's support plane along −normal)
-    T depth{};          ///< metres, > 0 when hit; moving B by depth · normal makes them touch
-    int iterations = 0; ///< support evaluations used (instrumentation)
+    Vec3<T> point_b{};   ///< world, the same for B (on B's support plane along −normal)
+    T depth{};           ///< metres, > 0 when hit; moving B by depth · normal makes them touch
+    int iterations = 0;  ///< support evaluations used (instrumentation)
 };
 
 /// True when the shapes overlap by more than touching. Stops as soon as the answer is known.
@@ -56,8 +56,8 @@ bool mpr_intersect(const A& a, const Transform<typename A::scalar_type>& pose_a,
 
 /// Normal, contact points and depth when the shapes overlap (hit), else hit = false.
 template <class A, class B>
-Penetration<typename A::scalar_type> mpr_penetration(const A& a, const Transform<typename A::scalar_type>& pose_a,
-                                                     const B& b, const Transform<typename A::scalar_type>& pose_b);
+Penetration<typename A::scalar_type> mpr_penetration(const A& a, const Transform<typename A::scalar_type>& pose_a, const B& b,
+                                                     const Transform<typename A::scalar_type>& pose_b);
 
 namespace detail {
 
@@ -78,7 +78,8 @@ void require_finite_pose(const Transform<T>& pose, const char* where, const char
     require_orientation(pose.orientation, where, (std::string(name) + ".orientation").c_str());
     // rotate() assumes a unit quaternion: any other scales and shears the shape.
     if (!(std::abs(length_squared(pose.orientation) - T(1)) <= T(1e-3)))
-        report_invalid(where, (std::string(name) + ".orientation must be a unit quaternion (within 1e-3; normalise it), |q|^2").c_str(),
+        report_invalid(where,
+                       (std::string(name) + ".orientation must be a unit quaternion (within 1e-3; normalise it), |q|^2").c_str(),
                        static_cast<double>(length_squared(pose.orientation)));
 }
 
@@ -266,7 +267,7 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
     for (int k = 0; k < kMprMaxIterations; ++k) {
         const Vec3<T> n = cross(v[2].v - v[1].v, v[3].v - v[1].v);
         const T n_sq = length_squared(n);
-        if (!(n_sq > tiny_normal_sq)) break;  // the portal collapsed to a segment or a point
+        if (!(n_sq > tiny_normal_sq)) break;               // the portal collapsed to a segment or a point
         const bool origin_inside = dot(n, v[1].v) > T(0);  // false after a hit: a sliver flipped
         last_good_n = n;
         if (!hit && origin_inside) {  // origin strictly inside the tetrahedron
@@ -275,7 +276,7 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
         }
         const SupportPoint<T> v4 = md.support(n);
         ++iterations;
-        const T support_distance = dot(v4.v, n);  // times |n|
+        const T support_distance = dot(v4.v, n);        // times |n|
         if (!hit && !(support_distance > T(0))) break;  // a support plane separates the origin
         if (origin_inside && support_distance > T(0) && support_distance * support_distance < best_ratio * n_sq) {
             best_ratio = support_distance * support_distance / n_sq;
@@ -333,8 +334,8 @@ bool mpr_intersect(const A& a, const Transform<typename A::scalar_type>& pose_a,
 }
 
 template <class A, class B>
-Penetration<typename A::scalar_type> mpr_penetration(const A& a, const Transform<typename A::scalar_type>& pose_a,
-                                                     const B& b, const Transform<typename A::scalar_type>& pose_b) {
+Penetration<typename A::scalar_type> mpr_penetration(const A& a, const Transform<typename A::scalar_type>& pose_a, const B& b,
+                                                     const Transform<typename A::scalar_type>& pose_b) {
     detail::require_finite_pose(pose_a, "mpr_penetration", "pose_a");
     detail::require_finite_pose(pose_b, "mpr_penetration", "pose_b");
     Penetration<typename A::scalar_type> p = detail::mpr(MinkowskiDifference<A, B>(a, pose_a, b, pose_b), false);
@@ -346,7 +347,11 @@ Penetration<typename A::scalar_type> mpr_penetration(const A& a, const Transform
     return p;
 }
 
-namespace f32 { using Penetration = xeno::Penetration<float>; }
-namespace f64 { using Penetration = xeno::Penetration<double>; }
+namespace f32 {
+using Penetration = xeno::Penetration<float>;
+}
+namespace f64 {
+using Penetration = xeno::Penetration<double>;
+}
 
 }  // namespace xeno

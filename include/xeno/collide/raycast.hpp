@@ -20,16 +20,16 @@ namespace xeno {
 template <class T>
 struct Ray {
     Vec3<T> origin{};
-    Vec3<T> direction{T(0), T(-1), T(0)};  ///< unit
+    Vec3<T> direction{T(0), T(-1), T(0)};   ///< unit
     T max_distance = ScalarTraits<T>::max;  ///< m
 };
 
 /// Where a ray meets a shape.
 template <class T>
 struct RayHit {
-    T distance{};     ///< m along the ray, 0 … max_distance
-    T fraction{};     ///< distance / max_distance (0 when max_distance is unbounded)
-    Vec3<T> point{};  ///< world
+    T distance{};      ///< m along the ray, 0 … max_distance
+    T fraction{};      ///< distance / max_distance (0 when max_distance is unbounded)
+    Vec3<T> point{};   ///< world
     Vec3<T> normal{};  ///< unit, world, the surface normal at the hit (facing the ray's origin)
 };
 
@@ -177,8 +177,9 @@ std::optional<LocalHit<T>> raycast_local(const Shape<T>& shape, const Vec3<T>& o
                 best = ray_sphere(o, d, max_t, Vec3<T>::zero(), s.radius());
             } else if constexpr (std::is_same_v<S, Box<T>>) {
                 const Vec3<T>& h = s.half_extents();
-                const std::pair<Vec3<T>, T> planes[6] = {{Vec3<T>::unit_x(), h.x}, {-Vec3<T>::unit_x(), h.x}, {Vec3<T>::unit_y(), h.y},
-                                                         {-Vec3<T>::unit_y(), h.y}, {Vec3<T>::unit_z(), h.z}, {-Vec3<T>::unit_z(), h.z}};
+                const std::pair<Vec3<T>, T> planes[6] = {{Vec3<T>::unit_x(), h.x}, {-Vec3<T>::unit_x(), h.x},
+                                                         {Vec3<T>::unit_y(), h.y}, {-Vec3<T>::unit_y(), h.y},
+                                                         {Vec3<T>::unit_z(), h.z}, {-Vec3<T>::unit_z(), h.z}};
                 best = clip_by_planes(o, d, max_t, planes);
             } else if constexpr (std::is_same_v<S, Capsule<T>>) {
                 const T h = s.half_height(), r = s.radius();
@@ -269,14 +270,19 @@ std::optional<T> raycast(const Aabb<T>& box, const Ray<T>& ray) {
     return enter;
 }
 
-namespace f32 { using Ray = xeno::Ray<float>; using RayHit = xeno::RayHit<float>; }
-namespace f64 { using Ray = xeno::Ray<double>; using RayHit = xeno::RayHit<double>; }
+namespace f32 {
+using Ray = xeno::Ray<float>;
+using RayHit = xeno::RayHit<float>;
+}  // namespace f32
+namespace f64 {
+using Ray = xeno::Ray<double>;
+using RayHit = xeno::RayHit<double>;
+}  // namespace f64
 
 #ifdef XENO_COMPILED_LIB
 // Compiled mode (compiled.hpp): float and double are compiled once, in src/xeno_compiled.cpp.
 extern template std::optional<RayHit<float>> raycast<float>(const Shape<float>&, const Transform<float>&, const Ray<float>&);
-extern template std::optional<RayHit<double>> raycast<double>(const Shape<double>&, const Transform<double>&,
-                                                              const Ray<double>&);
+extern template std::optional<RayHit<double>> raycast<double>(const Shape<double>&, const Transform<double>&, const Ray<double>&);
 #endif
 
 }  // namespace xeno

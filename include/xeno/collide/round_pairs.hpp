@@ -253,12 +253,12 @@ CoreContact<T> core_core_contact(T half_a, const Vec3<T>& c, const Vec3<T>& u, T
 /// A round pair as a segment against a box, in the box's frame (A's, or B's when B is the box).
 template <class T>
 struct CorePair {
-    Vec3<T> c{}, u{};        ///< metres: the segment c ± u (the round shape's core; B's for two round shapes)
-    Vec3<T> e{};             ///< metres: half extents of the box (A's core as a flat box for two round shapes)
-    T radius_box{};          ///< metres: radius swept around the box (0 for a real box)
-    T radius_segment{};      ///< metres: radius swept around the segment
+    Vec3<T> c{}, u{};    ///< metres: the segment c ± u (the round shape's core; B's for two round shapes)
+    Vec3<T> e{};         ///< metres: half extents of the box (A's core as a flat box for two round shapes)
+    T radius_box{};      ///< metres: radius swept around the box (0 for a real box)
+    T radius_segment{};  ///< metres: radius swept around the segment
     bool round_round = false;
-    bool b_is_box = false;   ///< the frame is B's: directions and sides swap when answering in A's frame
+    bool b_is_box = false;  ///< the frame is B's: directions and sides swap when answering in A's frame
     CoreContact<T> contact{};
     T radius() const { return radius_box + radius_segment; }
     T depth() const { return radius() - contact.gap; }

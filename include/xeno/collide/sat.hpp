@@ -21,7 +21,7 @@ namespace xeno {
 /// (unit, world, from A to B).
 template <class T>
 struct SeparatingAxis {
-    T depth{};      ///< metres: positive = penetration depth, negative = separation
+    T depth{};       ///< metres: positive = penetration depth, negative = separation
     Vec3<T> axis{};  ///< unit, world frame, from A to B
 };
 
@@ -47,8 +47,8 @@ void polytope_axes(const ConvexPolyhedron<T>& p, std::vector<Vec3<T>>& faces, st
 /// Exact minimum penetration (or separation) of two placed polytopes by brute force over all
 /// candidate axes: O(faces + edges_A × edges_B) support evaluations.
 template <class A, class B>
-SeparatingAxis<typename A::scalar_type> separating_axis(const A& a, const Transform<typename A::scalar_type>& pose_a,
-                                                        const B& b, const Transform<typename A::scalar_type>& pose_b) {
+SeparatingAxis<typename A::scalar_type> separating_axis(const A& a, const Transform<typename A::scalar_type>& pose_a, const B& b,
+                                                        const Transform<typename A::scalar_type>& pose_b) {
     using T = typename A::scalar_type;
     const MinkowskiDifference<A, B> md(a, pose_a, b, pose_b);
     std::vector<Vec3<T>> faces_a, edges_a, faces_b, edges_b;
@@ -76,7 +76,11 @@ SeparatingAxis<typename A::scalar_type> separating_axis(const A& a, const Transf
     return best;
 }
 
-namespace f32 { using SeparatingAxis = xeno::SeparatingAxis<float>; }
-namespace f64 { using SeparatingAxis = xeno::SeparatingAxis<double>; }
+namespace f32 {
+using SeparatingAxis = xeno::SeparatingAxis<float>;
+}
+namespace f64 {
+using SeparatingAxis = xeno::SeparatingAxis<double>;
+}
 
 }  // namespace xeno

@@ -28,20 +28,20 @@ namespace xeno {
 /// One persistent contact point: anchors on both bodies and its accumulated impulses.
 template <class T>
 struct ContactPoint {
-    Vec3<T> local_a{};          ///< m, A's body frame: the contact on A
-    Vec3<T> local_b{};          ///< m, B's body frame: the contact on B
-    T depth{};                  ///< m along the normal, > 0 overlapping, < 0 speculative gap
-    T normal_impulse{};         ///< N·s per solver substep, accumulated (warm start)
-    T max_normal_impulse{};     ///< N·s, the largest of the last step (restitution gate)
-    T step_impulse{};           ///< N·s, total normal impulse applied over the last step (events)
+    Vec3<T> local_a{};       ///< m, A's body frame: the contact on A
+    Vec3<T> local_b{};       ///< m, B's body frame: the contact on B
+    T depth{};               ///< m along the normal, > 0 overlapping, < 0 speculative gap
+    T normal_impulse{};      ///< N·s per solver substep, accumulated (warm start)
+    T max_normal_impulse{};  ///< N·s, the largest of the last step (restitution gate)
+    T step_impulse{};        ///< N·s, total normal impulse applied over the last step (events)
 };
 
 /// The persistent contact of one body pair.
 template <class T>
 struct Manifold {
     static constexpr int capacity = 4;
-    Vec3<T> normal{};                                 ///< unit, world, from A to B
-    std::array<ContactPoint<T>, capacity> points{};   ///< the first `count` are valid
+    Vec3<T> normal{};                                ///< unit, world, from A to B
+    std::array<ContactPoint<T>, capacity> points{};  ///< the first `count` are valid
     int count = 0;
     Vec3<T> friction_impulse{};  ///< N·s per substep, world, central friction (re-projected each step)
     T twist_impulse{};           ///< N·m·s per substep about the normal
@@ -171,7 +171,13 @@ void Manifold<T>::merge_single(const ManifoldPoint<T>& fresh, const Vec3<T>& nor
         if (i != drop) points[static_cast<std::size_t>(k++)] = all[static_cast<std::size_t>(i)];
 }
 
-namespace f32 { using Manifold = xeno::Manifold<float>; using ContactPoint = xeno::ContactPoint<float>; }
-namespace f64 { using Manifold = xeno::Manifold<double>; using ContactPoint = xeno::ContactPoint<double>; }
+namespace f32 {
+using Manifold = xeno::Manifold<float>;
+using ContactPoint = xeno::ContactPoint<float>;
+}  // namespace f32
+namespace f64 {
+using Manifold = xeno::Manifold<double>;
+using ContactPoint = xeno::ContactPoint<double>;
+}  // namespace f64
 
 }  // namespace xeno

@@ -44,20 +44,20 @@ struct BodyId {
 template <class T>
 struct BodyDef {
     BodyType type = BodyType::dynamic;
-    Vec3<T> position{};                             ///< m, world: the centre of mass
-    Quat<T> orientation = Quat<T>::identity();      ///< normalised on creation; must not be zero
-    Vec3<T> linear_velocity{};                      ///< m/s, world
-    Vec3<T> angular_velocity{};                     ///< rad/s, world
-    T density = T(1000);                            ///< kg/m³ (dynamic bodies): mass = density × volume
-    T mass = T(0);                                  ///< kg: > 0 sets the mass directly, inertia scaled to it
+    Vec3<T> position{};                         ///< m, world: the centre of mass
+    Quat<T> orientation = Quat<T>::identity();  ///< normalised on creation; must not be zero
+    Vec3<T> linear_velocity{};                  ///< m/s, world
+    Vec3<T> angular_velocity{};                 ///< rad/s, world
+    T density = T(1000);                        ///< kg/m³ (dynamic bodies): mass = density × volume
+    T mass = T(0);                              ///< kg: > 0 sets the mass directly, inertia scaled to it
     Material<T> material{};
-    T linear_damping = T(0);                        ///< 1/s: v decays as 1/(1 + c dt) per step
-    T angular_damping = T(0);                       ///< 1/s
+    T linear_damping = T(0);   ///< 1/s: v decays as 1/(1 + c dt) per step
+    T angular_damping = T(0);  ///< 1/s
     T gravity_scale = T(1);
-    bool fast = false;          ///< continuous collision against static and kinematic bodies; speed cap 1e6 m/s (float), 1e30 (double)
-    bool allow_sleep = true;    ///< false keeps the body (and its island) awake
-    bool sensor = false;        ///< reports overlaps, never pushes or is pushed
-    std::uint32_t layer = 1;    ///< collision layer bits of this body
+    bool fast = false;  ///< continuous collision against static and kinematic bodies; speed cap 1e6 m/s (float), 1e30 (double)
+    bool allow_sleep = true;                 ///< false keeps the body (and its island) awake
+    bool sensor = false;                     ///< reports overlaps, never pushes or is pushed
+    std::uint32_t layer = 1;                 ///< collision layer bits of this body
     std::uint32_t mask = ~std::uint32_t(0);  ///< layers it collides with (both sides must agree)
     std::uint64_t user_data = 0;
 };
@@ -91,13 +91,13 @@ public:
         return box;
     }
 
-    const Vec3<T>& position() const { return position_; }              ///< m, the centre of mass
+    const Vec3<T>& position() const { return position_; }  ///< m, the centre of mass
     const Quat<T>& orientation() const { return orientation_; }
     Transform<T> transform() const { return {position_, orientation_}; }
-    const Vec3<T>& linear_velocity() const { return linear_velocity_; }  ///< m/s
+    const Vec3<T>& linear_velocity() const { return linear_velocity_; }    ///< m/s
     const Vec3<T>& angular_velocity() const { return angular_velocity_; }  ///< rad/s, world
-    const Vec3<T>& force() const { return force_; }    ///< N, accumulated for the next step
-    const Vec3<T>& torque() const { return torque_; }  ///< N·m, accumulated for the next step
+    const Vec3<T>& force() const { return force_; }                        ///< N, accumulated for the next step
+    const Vec3<T>& torque() const { return torque_; }                      ///< N·m, accumulated for the next step
 
     T mass() const { return inverse_mass_ > T(0) ? T(1) / inverse_mass_ : ScalarTraits<T>::infinity; }  ///< kg
     T inverse_mass() const { return inverse_mass_; }
@@ -134,9 +134,7 @@ public:
     Vec3<T> local_point(const Vec3<T>& world) const { return inverse_rotate(orientation_, world - position_); }
     Vec3<T> local_vector(const Vec3<T>& world) const { return inverse_rotate(orientation_, world); }
     /// Velocity (m/s) of the material point at a world position: v + ω × (p − x).
-    Vec3<T> velocity_at(const Vec3<T>& world) const {
-        return linear_velocity_ + cross(angular_velocity_, world - position_);
-    }
+    Vec3<T> velocity_at(const Vec3<T>& world) const { return linear_velocity_ + cross(angular_velocity_, world - position_); }
     /// Kinetic energy (J): ½ m v² + ½ ωᵀ I ω.
     T kinetic_energy() const;
 
@@ -187,22 +185,22 @@ private:
     Vec3<T> angular_velocity_{};
     Vec3<T> force_{};
     Vec3<T> torque_{};
-    Mat3<T> inertia_local_{};          ///< kg·m², body frame; zero for static/kinematic
-    T inverse_mass_{};                 ///< 1/kg; zero for static/kinematic
+    Mat3<T> inertia_local_{};  ///< kg·m², body frame; zero for static/kinematic
+    T inverse_mass_{};         ///< 1/kg; zero for static/kinematic
     Material<T> material_{};
     T linear_damping_{}, angular_damping_{}, gravity_scale_{1};
-    T sleep_time_{};                   ///< s spent below the sleep speeds
+    T sleep_time_{};  ///< s spent below the sleep speeds
     std::uint64_t user_data_{};
-    std::uint32_t generation_ = 0;     ///< matches BodyId::generation while the body lives
+    std::uint32_t generation_ = 0;  ///< matches BodyId::generation while the body lives
     std::uint32_t layer_ = 1, mask_ = ~std::uint32_t(0);
     BodyType type_ = BodyType::dynamic;
-    bool alive_ = false;               ///< slot in use
+    bool alive_ = false;  ///< slot in use
     bool awake_ = true;
     bool allow_sleep_ = true;
     bool fast_ = false;
     bool sensor_ = false;
-    bool isotropic_ = true;            ///< inertia ∝ identity: no gyroscopic term
-    bool moved_ = false;               ///< teleported since the last step (broad phase must see it)
+    bool isotropic_ = true;  ///< inertia ∝ identity: no gyroscopic term
+    bool moved_ = false;     ///< teleported since the last step (broad phase must see it)
 };
 
 template <class T>
@@ -212,7 +210,8 @@ void Body<T>::accumulate(const Vec3<T>& force, const Vec3<T>& torque, const char
     detail::require_finite_xyz(f, where, "accumulated force");
     detail::require_finite_xyz(t, where, "accumulated torque");
     detail::require_finite_xyz(f * inverse_mass_, where, "accumulated force / mass");
-    if (t != Vec3<T>::zero()) detail::require_finite_xyz(inverse_inertia_world() * t, where, "inverse inertia * accumulated torque");
+    if (t != Vec3<T>::zero())
+        detail::require_finite_xyz(inverse_inertia_world() * t, where, "inverse inertia * accumulated torque");
     force_ = f;
     torque_ = t;
 }
@@ -325,7 +324,8 @@ template <class T>
 void check_mass_properties(const MassProperties<T>& m, T radius, const char* where) {
     require_positive(m.mass, where, "mass");
     if (!is_finite(m.center) || length(m.center) > T(1e-6) * (T(1) + radius))
-        report_invalid(where, "center must be 0 (the body's position is its centre of mass); |center|", static_cast<double>(length(m.center)));
+        report_invalid(where, "center must be 0 (the body's position is its centre of mass); |center|",
+                       static_cast<double>(length(m.center)));
     // Symmetric (up to round-off, as R I Rᵀ leaves it) and positive definite by Sylvester's
     // criterion: the leading principal minors are positive. The minors are taken of the inertia
     // divided by its largest diagonal entry, so tiny bodies (a 0.1 mm float sphere, I ~ 1e-17,
@@ -341,24 +341,34 @@ void check_mass_properties(const MassProperties<T>& m, T radius, const char* whe
         ok = asymmetry <= ScalarTraits<T>::relative_tolerance * std::abs(trace(n)) && n[0].x > T(0) && minor2 > T(0) &&
              determinant(n) > T(0) && inv && is_finite(*inv);
     }
-    if (!ok) report_invalid(where, "inertia must be finite, symmetric and positive definite (with a finite inverse); Ixx", static_cast<double>(i[0].x));
+    if (!ok)
+        report_invalid(where, "inertia must be finite, symmetric and positive definite (with a finite inverse); Ixx",
+                       static_cast<double>(i[0].x));
 }
 }  // namespace detail
 
 template <class T>
 void Body<T>::set_mass_properties(const MassProperties<T>& m) {
     const char* where = "Body::set_mass_properties";
-    if (type_ != BodyType::dynamic) detail::report_invalid(where, "only dynamic bodies have mass; body type", static_cast<double>(type_));
+    if (type_ != BodyType::dynamic)
+        detail::report_invalid(where, "only dynamic bodies have mass; body type", static_cast<double>(type_));
     detail::check_mass_properties(m, compound_ ? compound_->bounding_radius() : bounding_radius(*shape_), where);
     inverse_mass_ = T(1) / m.mass;
     inertia_local_ = m.inertia;
     const T mean = trace(m.inertia) / T(3);
     isotropic_ = length(m.inertia[0] - Vec3<T>::unit_x() * mean) + length(m.inertia[1] - Vec3<T>::unit_y() * mean) +
-                     length(m.inertia[2] - Vec3<T>::unit_z() * mean) <= T(1e-6) * mean;
+                     length(m.inertia[2] - Vec3<T>::unit_z() * mean) <=
+                 T(1e-6) * mean;
     wake();
 }
 
-namespace f32 { using Body = xeno::Body<float>; using BodyDef = xeno::BodyDef<float>; }
-namespace f64 { using Body = xeno::Body<double>; using BodyDef = xeno::BodyDef<double>; }
+namespace f32 {
+using Body = xeno::Body<float>;
+using BodyDef = xeno::BodyDef<float>;
+}  // namespace f32
+namespace f64 {
+using Body = xeno::Body<double>;
+using BodyDef = xeno::BodyDef<double>;
+}  // namespace f64
 
 }  // namespace xeno

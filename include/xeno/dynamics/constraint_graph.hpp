@@ -47,7 +47,8 @@ public:
             ++colour_begin[static_cast<std::size_t>(colour) + 2];
         }
         // Counting sort, stable: offsets, then rows in row order.
-        for (int c = 0; c < colours; ++c) colour_begin[static_cast<std::size_t>(c) + 2] += colour_begin[static_cast<std::size_t>(c) + 1];
+        for (int c = 0; c < colours; ++c)
+            colour_begin[static_cast<std::size_t>(c) + 2] += colour_begin[static_cast<std::size_t>(c) + 1];
         order.resize(rows - overflow.size());
         for (std::size_t i = 0; i < rows; ++i)
             if (colour_of_[i] < colours) order[colour_begin[colour_of_[i] + 1u]++] = static_cast<std::uint32_t>(i);
@@ -58,8 +59,8 @@ public:
     }
 
 private:
-    std::vector<std::uint32_t> used_;         ///< scratch: per solver body, a bit per colour taken
-    std::vector<std::uint8_t> colour_of_;     ///< scratch: per row, its colour (colours: overflow)
+    std::vector<std::uint32_t> used_;      ///< scratch: per solver body, a bit per colour taken
+    std::vector<std::uint8_t> colour_of_;  ///< scratch: per row, its colour (colours: overflow)
 };
 
 }  // namespace detail

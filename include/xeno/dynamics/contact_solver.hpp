@@ -35,13 +35,13 @@ namespace detail {
 /// One contact point's row, world frame, rebuilt every step.
 template <class T>
 struct ContactConstraintPoint {
-    Vec3<T> r_a{}, r_b{};          ///< m, from each centre of mass to the contact point
-    T adjusted_separation{};       ///< m: s0 − n·(r_b − r_a), so s = n·(Δ of the anchors) + this
-    T normal_mass{};               ///< kg: 1 / (n row's effective inverse mass)
-    T normal_impulse{};            ///< N·s per substep, accumulated
-    T max_normal_impulse{};        ///< N·s, the largest this step
-    T step_impulse{};              ///< N·s, summed over the substeps (events)
-    T relative_velocity{};         ///< m/s along n before the step (restitution)
+    Vec3<T> r_a{}, r_b{};     ///< m, from each centre of mass to the contact point
+    T adjusted_separation{};  ///< m: s0 − n·(r_b − r_a), so s = n·(Δ of the anchors) + this
+    T normal_mass{};          ///< kg: 1 / (n row's effective inverse mass)
+    T normal_impulse{};       ///< N·s per substep, accumulated
+    T max_normal_impulse{};   ///< N·s, the largest this step
+    T step_impulse{};         ///< N·s, summed over the substeps (events)
+    T relative_velocity{};    ///< m/s along n before the step (restitution)
 };
 
 /// One manifold's rows.
@@ -55,53 +55,51 @@ struct ContactConstraint {
     int count = 0;
     std::array<ContactConstraintPoint<T>, 4> points{};
     // Central friction and twist.
-    Vec3<T> rc_a{}, rc_b{};        ///< m, centres of mass to the patch centre
-    T k11{}, k12{}, k22{};         ///< inverse of the 2×2 tangent effective-mass matrix
-    T friction_1{}, friction_2{};  ///< N·s per substep along t1, t2
+    Vec3<T> rc_a{}, rc_b{};                          ///< m, centres of mass to the patch centre
+    T k11{}, k12{}, k22{};                           ///< inverse of the 2×2 tangent effective-mass matrix
+    T friction_1{}, friction_2{};                    ///< N·s per substep along t1, t2
     T twist_mass{}, twist_impulse{}, twist_lever{};  ///< kg·m², N·m·s, m (mean lever of the points)
 };
 
 /// What one solver pass needs to know.
 template <class T>
 struct SolvePass {
-    T inv_h{};         ///< 1/s, the (sub)step rate
-    bool use_bias{};   ///< false in the relax pass
+    T inv_h{};        ///< 1/s, the (sub)step rate
+    bool use_bias{};  ///< false in the relax pass
     SolverMode mode{};
     T baumgarte{};
     T linear_slop{};
     T max_push_out_speed{};
 };
 
-
 /// The restitution pass after the substeps (see the file comment). A few sweeps: one
 /// Gauss–Seidel sweep over a face's four points leaves the face short of the target speed
 /// (measured: a flat box bounced to 96 % of e v), and only bouncing rows take part.
 template <class T>
-void apply_restitution(std::vector<ContactConstraint<T>>& constraints, std::vector<SolverBody<T>>& bodies, const std::vector<SolverMass<T>>& masses,
-                       T threshold) {
+void apply_restitution(std::vector<ContactConstraint<T>>& constraints, std::vector<SolverBody<T>>& bodies,
+                       const std::vector<SolverMass<T>>& masses, T threshold) {
     constexpr int sweeps = 4;
     for (int sweep = 0; sweep < sweeps; ++sweep)
-    for (ContactConstraint<T>& c : constraints) {
-        if (c.restitution == T(0)) continue;
-        SolverBody<T>& a = bodies[c.a];
-        SolverBody<T>& b = bodies[c.b];
-        for (int i = 0; i < c.count; ++i) {
-            ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
-            if (p.relative_velocity > -threshold || p.max_normal_impulse == T(0)) continue;
-            const T vn = dot(b.velocity_at(p.r_b) - a.velocity_at(p.r_a), c.normal);
-            const T delta = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
-            const T updated = std::max(p.normal_impulse + delta, T(0));
-            const Vec3<T> impulse = c.normal * (updated - p.normal_impulse);
-            p.step_impulse += updated - p.normal_impulse;
-            p.normal_impulse = updated;
-            p.max_normal_impulse = std::max(p.max_normal_impulse, updated);
-            apply_impulse(a, masses[c.a], p.r_a, -impulse);
-            apply_impulse(b, masses[c.b], p.r_b, impulse);
+        for (ContactConstraint<T>& c : constraints) {
+            if (c.restitution == T(0)) continue;
+            SolverBody<T>& a = bodies[c.a];
+            SolverBody<T>& b = bodies[c.b];
+            for (int i = 0; i < c.count; ++i) {
+                ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
+                if (p.relative_velocity > -threshold || p.max_normal_impulse == T(0)) continue;
+                const T vn = dot(b.velocity_at(p.r_b) - a.velocity_at(p.r_a), c.normal);
+                const T delta = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
+                const T updated = std::max(p.normal_impulse + delta, T(0));
+                const Vec3<T> impulse = c.normal * (updated - p.normal_impulse);
+                p.step_impulse += updated - p.normal_impulse;
+                p.normal_impulse = updated;
+                p.max_normal_impulse = std::max(p.max_normal_impulse, updated);
+                apply_impulse(a, masses[c.a], p.r_a, -impulse);
+                apply_impulse(b, masses[c.b], p.r_b, impulse);
+            }
         }
-    }
     bodies[0] = SolverBody<T>{};
 }
-
 
 }  // namespace detail
 }  // namespace xeno

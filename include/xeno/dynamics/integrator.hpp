@@ -18,15 +18,15 @@ namespace detail {
 /// The per-step constants of one dynamic body that velocity integration needs.
 template <class T>
 struct BodyIntegration {
-    Vec3<T> acceleration{};      ///< m/s²: gravity × scale + force / mass
-    Vec3<T> angular_impulse_rate{};  ///< rad/s²: I_world⁻¹ torque
+    Vec3<T> acceleration{};                  ///< m/s²: gravity × scale + force / mass
+    Vec3<T> angular_impulse_rate{};          ///< rad/s²: I_world⁻¹ torque
     const Mat3<T>* inertia_local = nullptr;  ///< kg·m², body frame (gyroscopic term; the body's own)
-    Quat<T> orientation0{};      ///< orientation at the start of the step
+    Quat<T> orientation0{};                  ///< orientation at the start of the step
     T linear_damping{}, angular_damping{};
-    bool gyroscopic = false;     ///< false for isotropic inertia, where ω × Iω = 0
-    T max_spin = ScalarTraits<T>::infinity;  ///< rad/s: the spin cap of integrate_position, applied first
+    bool gyroscopic = false;                  ///< false for isotropic inertia, where ω × Iω = 0
+    T max_spin = ScalarTraits<T>::infinity;   ///< rad/s: the spin cap of integrate_position, applied first
     T max_speed = ScalarTraits<T>::infinity;  ///< m/s: the speed cap of integrate_position
-    bool dynamic = true;         ///< false for kinematic bodies, whose velocity is the user's
+    bool dynamic = true;                      ///< false for kinematic bodies, whose velocity is the user's
 };
 
 template <class T>
@@ -66,7 +66,6 @@ void integrate_velocity(SolverBody<T>& body, const BodyIntegration<T>& in, T h) 
     body.w *= T(1) / (T(1) + h * in.angular_damping);
 }
 
-
 /// v scaled down to length `limit` when it is longer (limit > 0). The length is taken after
 /// dividing by the largest component, so a finite v of any size (1e20 in float, whose square
 /// overflows) keeps its direction; an infinite component counts as the direction of v.
@@ -79,12 +78,11 @@ Vec3<T> capped_length(const Vec3<T>& v, T limit) {
         for (int i = 0; i < 3; ++i) u[i] = std::isinf(v[i]) ? std::copysign(T(1), v[i]) : T(0);
     } else {
         const T largest = std::max(std::max(std::abs(v.x), std::abs(v.y)), std::abs(v.z));
-        u = v / largest;  // components in [-1, 1], |u| in [1, √3]
+        u = v / largest;                             // components in [-1, 1], |u| in [1, √3]
         if (largest * length(u) <= limit) return v;  // only for a limit beyond √(max) (fast bodies)
     }
     return u * (limit / length(u));
 }
-
 
 /// Δx += h v, Δq ← Δq + h/2 (0, ω) Δq, with the speed caps against tunnelling.
 template <class T>

@@ -42,15 +42,15 @@ template <class T>
 struct JointDef {
     JointType type = JointType::ball;
     BodyId a, b;
-    Vec3<T> anchor_a{};          ///< m, world: where the joint holds body A (and B, except distance)
-    Vec3<T> anchor_b{};          ///< m, world: distance joints only, the point on B
+    Vec3<T> anchor_a{};              ///< m, world: where the joint holds body A (and B, except distance)
+    Vec3<T> anchor_b{};              ///< m, world: distance joints only, the point on B
     Vec3<T> axis{T(0), T(1), T(0)};  ///< hinge axis, world (need not be unit, must not be zero)
-    bool enable_limit = false;   ///< hinge: keep the angle within [lower, upper]
+    bool enable_limit = false;       ///< hinge: keep the angle within [lower, upper]
     T lower_angle{}, upper_angle{};  ///< rad, the hinge angle of B relative to A, 0 at creation
-    bool enable_motor = false;   ///< hinge: drive the relative spin about the axis
-    T motor_speed{};             ///< rad/s
-    T max_motor_torque{};        ///< N·m
-    T length = T(-1);            ///< distance: m; negative means the anchors' distance at creation
+    bool enable_motor = false;       ///< hinge: drive the relative spin about the axis
+    T motor_speed{};                 ///< rad/s
+    T max_motor_torque{};            ///< N·m
+    T length = T(-1);                ///< distance: m; negative means the anchors' distance at creation
     bool collide_connected = false;  ///< whether the two bodies still collide with each other
 
     static JointDef ball(BodyId a, BodyId b, const Vec3<T>& anchor) {
@@ -111,13 +111,13 @@ namespace detail {
 /// A joint's rows for one step (world frame), built in prepare and solved every substep.
 template <class T>
 struct JointConstraint {
-    std::uint32_t joint = 0;      ///< index into the world's joints
-    std::uint32_t a = 0, b = 0;   ///< solver body indices (0: static stand-in)
-    SolverMass<T> mass_a{}, mass_b{};  ///< the two bodies' inverse masses and inertias, frozen for the step
-    Vec3<T> r_a0{}, r_b0{};       ///< anchors at the start of the step (rotated by Δq each substep)
-    Vec3<T> delta_center{};       ///< x_B − x_A at the start of the step
+    std::uint32_t joint = 0;                           ///< index into the world's joints
+    std::uint32_t a = 0, b = 0;                        ///< solver body indices (0: static stand-in)
+    SolverMass<T> mass_a{}, mass_b{};                  ///< the two bodies' inverse masses and inertias, frozen for the step
+    Vec3<T> r_a0{}, r_b0{};                            ///< anchors at the start of the step (rotated by Δq each substep)
+    Vec3<T> delta_center{};                            ///< x_B − x_A at the start of the step
     Vec3<T> axis_a0{}, axis_b0{}, ref_a0{}, ref_b0{};  ///< hinge frames at the start of the step
-    Quat<T> qa0{}, qb0{};         ///< orientations at the start of the step
+    Quat<T> qa0{}, qb0{};                              ///< orientations at the start of the step
     Softness<T> softness{};
     Softness<T> limit_softness{};  ///< the contacts' (heavily damped): a limit is a contact in angle
     /// m/s: cap on the speed at which a stretched joint is pulled together (the world's speed
@@ -125,7 +125,6 @@ struct JointConstraint {
     /// 1e35 m apart (a teleport, a restored snapshot) from overflowing its impulse to inf − inf.
     T max_bias_speed = ScalarTraits<T>::infinity;
 };
-
 
 /// −[r]× M [r]×, the rotational part of a point row's 3×3 effective mass.
 template <class T>
@@ -140,7 +139,6 @@ void perpendicular_pair(const Vec3<T>& a, Vec3<T>& b1, Vec3<T>& b2) {
     b1 = any_perpendicular(a);
     b2 = cross(a, b1);
 }
-
 
 /// Applies the joint's accumulated impulses (warm start).
 template <class T>
@@ -176,7 +174,8 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
         // (A length that overflows still has a direction: capped_length scales before squaring.)
         const Vec3<T> n = !std::isfinite(len) ? detail::capped_length(d, T(1)) : len > T(0) ? d / len : Vec3<T>::unit_y();
         const Vec3<T> rna = cross(ra, n), rnb = cross(rb, n);
-        const T k = c.mass_a.inv_mass + c.mass_b.inv_mass + dot(rna, c.mass_a.inv_inertia * rna) + dot(rnb, c.mass_b.inv_inertia * rnb);
+        const T k =
+            c.mass_a.inv_mass + c.mass_b.inv_mass + dot(rna, c.mass_a.inv_inertia * rna) + dot(rnb, c.mass_b.inv_inertia * rnb);
         if (k > T(0)) {
             const T bias = bias_rate > T(0) ? clamp(bias_rate * (len - j.length), -c.max_bias_speed, c.max_bias_speed) : T(0);
             const T cdot = dot(b.velocity_at(rb) - a.velocity_at(ra), n) + bias;
@@ -189,8 +188,8 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
     }
 
     // The point rows (ball, hinge, fixed), as one 3×3 block.
-    const Mat3<T> k = Mat3<T>::identity() * (c.mass_a.inv_mass + c.mass_b.inv_mass) + detail::point_mass_term(ra, c.mass_a.inv_inertia) +
-                      detail::point_mass_term(rb, c.mass_b.inv_inertia);
+    const Mat3<T> k = Mat3<T>::identity() * (c.mass_a.inv_mass + c.mass_b.inv_mass) +
+                      detail::point_mass_term(ra, c.mass_a.inv_inertia) + detail::point_mass_term(rb, c.mass_b.inv_inertia);
     if (const std::optional<Mat3<T>> k_inv = try_inverse(k)) {
         const Vec3<T> separation = (b.dp - a.dp) + c.delta_center + rb - ra;
         const Vec3<T> bias = bias_rate > T(0) ? detail::capped_length(separation * bias_rate, c.max_bias_speed) : Vec3<T>::zero();
@@ -276,7 +275,13 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
 
 }  // namespace detail
 
-namespace f32 { using JointDef = xeno::JointDef<float>; using Joint = xeno::Joint<float>; }
-namespace f64 { using JointDef = xeno::JointDef<double>; using Joint = xeno::Joint<double>; }
+namespace f32 {
+using JointDef = xeno::JointDef<float>;
+using Joint = xeno::Joint<float>;
+}  // namespace f32
+namespace f64 {
+using JointDef = xeno::JointDef<double>;
+using Joint = xeno::Joint<double>;
+}  // namespace f64
 
 }  // namespace xeno

@@ -17,8 +17,8 @@ namespace xeno {
 /// Friction coefficient µ (Coulomb, dimensionless, >= 0) and restitution e (0 … 1).
 template <class T>
 struct Material {
-    T friction = T(0.6);     ///< Coulomb µ: tangential impulse <= µ · normal impulse
-    T restitution = T(0);    ///< 0 = no bounce, 1 = bounces back at the approach speed
+    T friction = T(0.6);   ///< Coulomb µ: tangential impulse <= µ · normal impulse
+    T restitution = T(0);  ///< 0 = no bounce, 1 = bounces back at the approach speed
 };
 
 /// The combined friction of a touching pair: √(µA µB).
@@ -42,7 +42,11 @@ void validate(const Material<T>& m, const char* where) {
 }
 }  // namespace detail
 
-namespace f32 { using Material = xeno::Material<float>; }
-namespace f64 { using Material = xeno::Material<double>; }
+namespace f32 {
+using Material = xeno::Material<float>;
+}
+namespace f64 {
+using Material = xeno::Material<double>;
+}
 
 }  // namespace xeno

@@ -34,26 +34,26 @@ struct WorldSettings {
     int max_steps_per_update = 8;           ///< update() drops simulated time beyond this many steps
 
     SolverMode solver = SolverMode::soft_step;
-    int substeps = 12;              ///< soft step: solver substeps per step
-    int velocity_iterations = 1;    ///< biased iterations per substep (soft step) or per step (baumgarte: 10 recommended)
-    int relax_iterations = 1;       ///< unbiased iterations after each substep (baumgarte: per step)
-    int joint_iterations = 4;       ///< sweeps over the joints per contact sweep: joints are few, and one
-                                    ///< sweep lets a door rebound 7 % off its stop (four: under 1 %)
-    T contact_hertz = T(90);        ///< soft step: contact stiffness as a frequency, capped at 1/8 of the substep rate
-    T contact_damping_ratio = T(10);  ///< soft step: heavily over-damped so overlap leaves without overshoot
+    int substeps = 12;                    ///< soft step: solver substeps per step
+    int velocity_iterations = 1;          ///< biased iterations per substep (soft step) or per step (baumgarte: 10 recommended)
+    int relax_iterations = 1;             ///< unbiased iterations after each substep (baumgarte: per step)
+    int joint_iterations = 4;             ///< sweeps over the joints per contact sweep: joints are few, and one
+                                          ///< sweep lets a door rebound 7 % off its stop (four: under 1 %)
+    T contact_hertz = T(90);              ///< soft step: contact stiffness as a frequency, capped at 1/8 of the substep rate
+    T contact_damping_ratio = T(10);      ///< soft step: heavily over-damped so overlap leaves without overshoot
     T static_contact_hertz_scale = T(1);  ///< contacts with static or kinematic bodies are this much stiffer (Box2D: 2;
                                           ///< measured here, 2 lets a box 5–200 times heavier rock forever on a light one)
-    T joint_hertz = T(120);         ///< soft step: joint stiffness, capped at 1/4 of the substep rate
+    T joint_hertz = T(120);               ///< soft step: joint stiffness, capped at 1/4 of the substep rate
     T joint_damping_ratio = T(2);
-    T baumgarte = T(0.2);           ///< baumgarte mode: fraction of the overlap removed per step
-    T max_push_out_speed = T(3);    ///< m/s: cap on the speed at which overlap is removed
-    T linear_slop = T(0.005);       ///< m: overlap tolerated without correction (baumgarte) and contact tolerance
-    T speculative_distance = T(0.02);  ///< m: gap below which contacts exist before touching (plus the approach of one step)
+    T baumgarte = T(0.2);                ///< baumgarte mode: fraction of the overlap removed per step
+    T max_push_out_speed = T(3);         ///< m/s: cap on the speed at which overlap is removed
+    T linear_slop = T(0.005);            ///< m: overlap tolerated without correction (baumgarte) and contact tolerance
+    T speculative_distance = T(0.02);    ///< m: gap below which contacts exist before touching (plus the approach of one step)
     T contact_match_distance = T(0.02);  ///< m: a new contact point within this of an old one inherits its impulses
-    T restitution_threshold = T(1);  ///< m/s: slower approaches do not bounce (resting boxes stay put)
-    T max_linear_speed = T(400);     ///< m/s: speed cap against tunnelling (lifted for fast bodies by CCD)
+    T restitution_threshold = T(1);      ///< m/s: slower approaches do not bounce (resting boxes stay put)
+    T max_linear_speed = T(400);         ///< m/s: speed cap against tunnelling (lifted for fast bodies by CCD)
     T max_rotation_per_step = T(0.25) * ScalarTraits<T>::pi;  ///< rad per step
-    bool warm_starting = true;       ///< reuse last step's impulses as the first guess
+    bool warm_starting = true;                                ///< reuse last step's impulses as the first guess
 
     // Sleeping (islands whose bodies stay slow for sleep_time sleep; see docs/features.md).
     bool allow_sleeping = true;
@@ -76,7 +76,7 @@ namespace detail {
 /// them a step either takes minutes (counts) or leaves the range of T (times and lengths).
 struct SettingsLimits {
     static constexpr int max_substeps = 64;
-    static constexpr int max_iterations = 256;        ///< velocity_iterations and relax_iterations
+    static constexpr int max_iterations = 256;  ///< velocity_iterations and relax_iterations
     static constexpr int max_joint_iterations = 64;
     static constexpr int max_steps_per_update = 1000;
     static constexpr int max_contact_pairs = 1 << 30;
@@ -143,7 +143,11 @@ void validate(const WorldSettings<T>& s) {
 }
 }  // namespace detail
 
-namespace f32 { using WorldSettings = xeno::WorldSettings<float>; }
-namespace f64 { using WorldSettings = xeno::WorldSettings<double>; }
+namespace f32 {
+using WorldSettings = xeno::WorldSettings<float>;
+}
+namespace f64 {
+using WorldSettings = xeno::WorldSettings<double>;
+}
 
 }  // namespace xeno

@@ -58,7 +58,8 @@ public:
     template <class V>
     V get() {
         static_assert(std::is_trivially_copyable_v<V>, "only plain values are read byte for byte");
-        if (bytes_.size() - offset_ < sizeof(V)) report_invalid("restore_snapshot", "the buffer is truncated at byte", static_cast<double>(offset_));
+        if (bytes_.size() - offset_ < sizeof(V))
+            report_invalid("restore_snapshot", "the buffer is truncated at byte", static_cast<double>(offset_));
         V value;
         std::memcpy(&value, bytes_.data() + offset_, sizeof(V));
         offset_ += sizeof(V);
@@ -121,7 +122,7 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 2;  // 2: WorldSettings::max_contact_pairs
+constexpr std::uint32_t kSnapshotVersion = 2;         // 2: WorldSettings::max_contact_pairs
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {
@@ -174,7 +175,8 @@ Shape<T> read_shape(ByteReader& r) {
             std::vector<std::vector<std::uint32_t>> faces;
             for (std::uint64_t f = 0; f < face_count && f < (std::uint64_t(1) << 24); ++f) {
                 const std::uint32_t count = r.get<std::uint32_t>();
-                if (count > vertices.size()) report_invalid("restore_snapshot", "a face lists more vertices than the hull has", count);
+                if (count > vertices.size())
+                    report_invalid("restore_snapshot", "a face lists more vertices than the hull has", count);
                 std::vector<std::uint32_t> face;
                 for (std::uint32_t k = 0; k < count; ++k) face.push_back(r.get<std::uint32_t>());
                 faces.push_back(std::move(face));
@@ -211,7 +213,8 @@ struct SnapshotAccess {
         std::vector<const Shape<T>*> shapes;
         std::vector<const Compound<T>*> compounds;
         for (const Body<T>& b : world.bodies_) {
-            if (b.shape_ && shape_ids.emplace(b.shape_.get(), static_cast<std::uint32_t>(shapes.size())).second) shapes.push_back(b.shape_.get());
+            if (b.shape_ && shape_ids.emplace(b.shape_.get(), static_cast<std::uint32_t>(shapes.size())).second)
+                shapes.push_back(b.shape_.get());
             if (b.compound_ && compound_ids.emplace(b.compound_.get(), static_cast<std::uint32_t>(compounds.size())).second)
                 compounds.push_back(b.compound_.get());
         }
@@ -253,20 +256,27 @@ struct SnapshotAccess {
         world.require_outside_filter("restore_snapshot");
         // Everything is read into a fresh world first: a bad buffer leaves `world` untouched.
         detail::ByteReader r(bytes);
-        if (r.get<std::uint32_t>() != detail::kSnapshotMagic) detail::report_invalid("restore_snapshot", "not a xeno snapshot (bad header); size", static_cast<double>(bytes.size()));
+        if (r.get<std::uint32_t>() != detail::kSnapshotMagic)
+            detail::report_invalid("restore_snapshot", "not a xeno snapshot (bad header); size",
+                                   static_cast<double>(bytes.size()));
         const std::uint32_t version = r.get<std::uint32_t>();
-        if (version != detail::kSnapshotVersion) detail::report_invalid("restore_snapshot", "unsupported snapshot version", version);
+        if (version != detail::kSnapshotVersion)
+            detail::report_invalid("restore_snapshot", "unsupported snapshot version", version);
         const std::uint32_t scalar = r.get<std::uint32_t>();
-        if (scalar != sizeof(T)) detail::report_invalid("restore_snapshot", "the snapshot is of another scalar type; its scalar size", scalar);
+        if (scalar != sizeof(T))
+            detail::report_invalid("restore_snapshot", "the snapshot is of another scalar type; its scalar size", scalar);
         const WorldSettings<T> settings = r.get<WorldSettings<T>>();
         check_settings(settings);
         World<T> out(settings);  // the constructor validates the settings as set_settings does
         out.accumulator_ = r.get<T>();
         if (!(std::isfinite(out.accumulator_) && out.accumulator_ >= T(0)))
-            detail::report_invalid("restore_snapshot", "the accumulator must be finite and >= 0", static_cast<double>(out.accumulator_));
-        std::vector<std::shared_ptr<const Shape<T>>> shapes(static_cast<std::size_t>(std::min<std::uint64_t>(r.get<std::uint64_t>(), bytes.size())));
+            detail::report_invalid("restore_snapshot", "the accumulator must be finite and >= 0",
+                                   static_cast<double>(out.accumulator_));
+        std::vector<std::shared_ptr<const Shape<T>>> shapes(
+            static_cast<std::size_t>(std::min<std::uint64_t>(r.get<std::uint64_t>(), bytes.size())));
         for (auto& s : shapes) s = std::make_shared<const Shape<T>>(detail::read_shape<T>(r));
-        std::vector<std::shared_ptr<const Compound<T>>> compounds(static_cast<std::size_t>(std::min<std::uint64_t>(r.get<std::uint64_t>(), bytes.size())));
+        std::vector<std::shared_ptr<const Compound<T>>> compounds(
+            static_cast<std::size_t>(std::min<std::uint64_t>(r.get<std::uint64_t>(), bytes.size())));
         for (auto& c : compounds) {
             const std::uint64_t n = r.get<std::uint64_t>();
             Compound<T> compound;  // restored field by field: rebuilding would re-centre by round-off
@@ -281,7 +291,8 @@ struct SnapshotAccess {
             c = std::make_shared<const Compound<T>>(std::move(compound));
         }
         const std::uint64_t body_count = r.get<std::uint64_t>();
-        if (body_count > bytes.size()) detail::report_invalid("restore_snapshot", "body count runs past the buffer", static_cast<double>(body_count));
+        if (body_count > bytes.size())
+            detail::report_invalid("restore_snapshot", "body count runs past the buffer", static_cast<double>(body_count));
         out.bodies_.resize(static_cast<std::size_t>(body_count));
         for (Body<T>& b : out.bodies_) {
             b.alive_ = r.get_bool();
@@ -290,20 +301,24 @@ struct SnapshotAccess {
             const std::uint32_t shape = r.get<std::uint32_t>(), compound = r.get<std::uint32_t>();
             if (shape != ~std::uint32_t(0)) {
                 if (shape >= shapes.size()) detail::report_invalid("restore_snapshot", "a body refers to a missing shape", shape);
-                if (compound != ~std::uint32_t(0)) detail::report_invalid("restore_snapshot", "a body refers to both a shape and a compound", compound);
+                if (compound != ~std::uint32_t(0))
+                    detail::report_invalid("restore_snapshot", "a body refers to both a shape and a compound", compound);
                 b.shape_ = shapes[shape];
             } else {
-                if (compound >= compounds.size()) detail::report_invalid("restore_snapshot", "a body refers to a missing compound", compound);
+                if (compound >= compounds.size())
+                    detail::report_invalid("restore_snapshot", "a body refers to a missing compound", compound);
                 b.compound_ = compounds[compound];
             }
             b.position_ = r.get<Vec3<T>>(), b.orientation_ = r.get<Quat<T>>();
             b.linear_velocity_ = r.get<Vec3<T>>(), b.angular_velocity_ = r.get<Vec3<T>>();
             b.force_ = r.get<Vec3<T>>(), b.torque_ = r.get<Vec3<T>>(), b.inertia_local_ = r.get<Mat3<T>>();
             b.inverse_mass_ = r.get<T>(), b.material_ = r.get<Material<T>>();
-            b.linear_damping_ = r.get<T>(), b.angular_damping_ = r.get<T>(), b.gravity_scale_ = r.get<T>(), b.sleep_time_ = r.get<T>();
+            b.linear_damping_ = r.get<T>(), b.angular_damping_ = r.get<T>(), b.gravity_scale_ = r.get<T>(),
+            b.sleep_time_ = r.get<T>();
             b.user_data_ = r.get<std::uint64_t>(), b.layer_ = r.get<std::uint32_t>(), b.mask_ = r.get<std::uint32_t>();
             const std::uint8_t type = r.get<std::uint8_t>();
-            if (type > static_cast<std::uint8_t>(BodyType::dynamic)) detail::report_invalid("restore_snapshot", "a body's type is not a BodyType", type);
+            if (type > static_cast<std::uint8_t>(BodyType::dynamic))
+                detail::report_invalid("restore_snapshot", "a body's type is not a BodyType", type);
             b.type_ = static_cast<BodyType>(type);
             b.awake_ = r.get_bool(), b.allow_sleep_ = r.get_bool(), b.fast_ = r.get_bool(), b.sensor_ = r.get_bool();
             b.isotropic_ = r.get_bool(), b.moved_ = r.get_bool();
@@ -315,7 +330,9 @@ struct SnapshotAccess {
         out.joints_ = r.get_vector<Joint<T>>();
         out.free_joints_ = r.get_vector<std::uint32_t>();
         out.events_pending_ = r.get_vector<ContactEvent<T>>();
-        if (!r.done()) detail::report_invalid("restore_snapshot", "bytes left over after the world (not a snapshot of this version?); size", static_cast<double>(bytes.size()));
+        if (!r.done())
+            detail::report_invalid("restore_snapshot", "bytes left over after the world (not a snapshot of this version?); size",
+                                   static_cast<double>(bytes.size()));
         check_world(out);
         out.solver_index_.assign(out.bodies_.size(), 0);
         out.rebuild_joint_pairs();
@@ -349,9 +366,12 @@ void SnapshotAccess<T>::check_settings(const WorldSettings<T>& s) {
     // Counts that would make a step take hours: the settings' own validation bounds them too.
     constexpr int most_substeps = 64, most_iterations = 256, most_joint_iterations = 64, most_steps_per_update = 1000;
     if (s.substeps > most_substeps) detail::report_invalid("restore_snapshot", "settings.substeps above 64", s.substeps);
-    if (s.velocity_iterations > most_iterations) detail::report_invalid("restore_snapshot", "settings.velocity_iterations above 256", s.velocity_iterations);
-    if (s.relax_iterations > most_iterations) detail::report_invalid("restore_snapshot", "settings.relax_iterations above 256", s.relax_iterations);
-    if (s.joint_iterations > most_joint_iterations) detail::report_invalid("restore_snapshot", "settings.joint_iterations above 64", s.joint_iterations);
+    if (s.velocity_iterations > most_iterations)
+        detail::report_invalid("restore_snapshot", "settings.velocity_iterations above 256", s.velocity_iterations);
+    if (s.relax_iterations > most_iterations)
+        detail::report_invalid("restore_snapshot", "settings.relax_iterations above 256", s.relax_iterations);
+    if (s.joint_iterations > most_joint_iterations)
+        detail::report_invalid("restore_snapshot", "settings.joint_iterations above 64", s.joint_iterations);
     if (s.max_steps_per_update > most_steps_per_update)
         detail::report_invalid("restore_snapshot", "settings.max_steps_per_update above 1000", s.max_steps_per_update);
     detail::validate(s);
@@ -376,7 +396,9 @@ void SnapshotAccess<T>::check_compound(const Compound<T>& c) {
          std::abs(m.mass - ref.unit_mass_.mass) <= tol * ref.unit_mass_.mass;
     const T scale = trace(ref.unit_mass_.inertia);
     for (int i = 0; ok && i < 3; ++i) ok = length(m.inertia[i] - ref.unit_mass_.inertia[i]) <= tol * scale;
-    if (!ok) detail::report_invalid("restore_snapshot", "a compound's mass, bounds or radius do not match its children; radius", static_cast<double>(c.radius_));
+    if (!ok)
+        detail::report_invalid("restore_snapshot", "a compound's mass, bounds or radius do not match its children; radius",
+                               static_cast<double>(c.radius_));
 }
 
 template <class T>
@@ -384,24 +406,30 @@ void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
     const Body<T>& b = w.bodies_[slot];
     const auto bad = [slot](const char* what) { detail::report_corrupt(what, slot); };
     const T radius = b.compound_ ? b.compound_->bounding_radius() : bounding_radius(*b.shape_);
-    if (b.shape_ && length(interior_point(*b.shape_)) > T(1e-4) * radius) bad("a body's shape is not centred on its centre of mass; body slot");
-    if (!is_finite(b.position_) || !detail::unit_quat(b.orientation_)) bad("a body's pose is not finite with a unit orientation; body slot");
+    if (b.shape_ && length(interior_point(*b.shape_)) > T(1e-4) * radius)
+        bad("a body's shape is not centred on its centre of mass; body slot");
+    if (!is_finite(b.position_) || !detail::unit_quat(b.orientation_))
+        bad("a body's pose is not finite with a unit orientation; body slot");
     if (!is_finite(b.linear_velocity_) || !is_finite(b.angular_velocity_) || !is_finite(b.force_) || !is_finite(b.torque_))
         bad("a body's velocity, force or torque is not finite; body slot");
-    if (!(b.material_.friction >= T(0) && std::isfinite(b.material_.friction) && b.material_.restitution >= T(0) && b.material_.restitution <= T(1)))
+    if (!(b.material_.friction >= T(0) && std::isfinite(b.material_.friction) && b.material_.restitution >= T(0) &&
+          b.material_.restitution <= T(1)))
         bad("a body's material is out of range; body slot");
-    if (!(std::isfinite(b.linear_damping_) && b.linear_damping_ >= T(0) && std::isfinite(b.angular_damping_) && b.angular_damping_ >= T(0)))
+    if (!(std::isfinite(b.linear_damping_) && b.linear_damping_ >= T(0) && std::isfinite(b.angular_damping_) &&
+          b.angular_damping_ >= T(0)))
         bad("a body's damping is not finite and >= 0; body slot");
     if (!std::isfinite(b.gravity_scale_) || !(std::isfinite(b.sleep_time_) && b.sleep_time_ >= T(0)))
         bad("a body's gravity scale or sleep time is out of range; body slot");
     if (b.type_ == BodyType::dynamic) {
         if (!(std::isfinite(b.inverse_mass_) && b.inverse_mass_ > T(0) && std::isfinite(T(1) / b.inverse_mass_)))
             bad("a dynamic body's inverse mass is not finite and > 0; body slot");
-        detail::check_mass_properties(MassProperties<T>{T(1) / b.inverse_mass_, Vec3<T>::zero(), b.inertia_local_}, radius, "restore_snapshot");
+        detail::check_mass_properties(MassProperties<T>{T(1) / b.inverse_mass_, Vec3<T>::zero(), b.inertia_local_}, radius,
+                                      "restore_snapshot");
         const Mat3<T>& i = b.inertia_local_;
         const T mean = trace(i) / T(3);
         const bool isotropic = length(i[0] - Vec3<T>::unit_x() * mean) + length(i[1] - Vec3<T>::unit_y() * mean) +
-                                   length(i[2] - Vec3<T>::unit_z() * mean) <= T(1e-6) * mean;
+                                   length(i[2] - Vec3<T>::unit_z() * mean) <=
+                               T(1e-6) * mean;
         if (isotropic != b.isotropic_) bad("a body's isotropic flag does not match its inertia; body slot");
         // The accelerations the accumulated force and torque give stay within the range the step
         // integrates (ScalarTraits<T>::max_size in m/s², rad/s²).
@@ -435,8 +463,12 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
         const T r = b.compound_ ? b.compound_->bounding_radius() : bounding_radius(*b.shape_);
         return b.inverse_mass_ + inv_inertia(slot) * r * r;
     };
-    const auto linear_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) { return std::abs(impulse) * (reach(a) + reach(b)) <= most; };
-    const auto angular_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) { return std::abs(impulse) * (inv_inertia(a) + inv_inertia(b)) <= most; };
+    const auto linear_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) {
+        return std::abs(impulse) * (reach(a) + reach(b)) <= most;
+    };
+    const auto angular_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) {
+        return std::abs(impulse) * (inv_inertia(a) + inv_inertia(b)) <= most;
+    };
     const std::size_t n = w.bodies_.size();
     if (w.bounds_.size() != n || w.previous_pose_.size() != n) detail::report_corrupt("inconsistent body tables; bodies", n);
     if (n >= BodyId::invalid_index) detail::report_corrupt("too many body slots", n);
@@ -454,26 +486,33 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
         } else {
             if (!listed[i]) detail::report_corrupt("a dead slot is not listed as free; slot", i);
             // A dead slot's box stays empty so the broad phase never pairs it.
-            if (std::memcmp(&w.bounds_[i], &empty, sizeof empty) != 0) detail::report_corrupt("a dead slot has a broad-phase box; slot", i);
+            if (std::memcmp(&w.bounds_[i], &empty, sizeof empty) != 0)
+                detail::report_corrupt("a dead slot has a broad-phase box; slot", i);
         }
     }
-    const auto living = [&](BodyId id) { return id.index < n && w.bodies_[id.index].alive_ && w.bodies_[id.index].generation_ == id.generation; };
+    const auto living = [&](BodyId id) {
+        return id.index < n && w.bodies_[id.index].alive_ && w.bodies_[id.index].generation_ == id.generation;
+    };
     // Contacts: between living bodies, a < b, sorted by (a, b, child a, child b) without repeats
     // (the narrow phase merges them with the sorted broad-phase pairs), 0 … 4 finite points.
     for (std::size_t k = 0; k < w.contacts_.size(); ++k) {
         const Contact<T>& c = w.contacts_[k];
         if (!detail::raw_bool_ok(c.touching) || !detail::raw_bool_ok(c.was_touching) || !detail::raw_bool_ok(c.sensor))
             detail::report_corrupt("a contact's bool byte is neither 0 nor 1; contact", k);
-        if (!living(c.a) || !living(c.b) || !(c.a.index < c.b.index)) detail::report_corrupt("a contact does not join two living bodies a < b; contact", k);
+        if (!living(c.a) || !living(c.b) || !(c.a.index < c.b.index))
+            detail::report_corrupt("a contact does not join two living bodies a < b; contact", k);
         if (c.child_a >= w.bodies_[c.a.index].child_count() || c.child_b >= w.bodies_[c.b.index].child_count())
             detail::report_corrupt("a contact's part index is out of range; contact", k);
         if (k > 0) {
             const Contact<T>& p = w.contacts_[k - 1];
-            const auto key = [](const Contact<T>& x) { return std::array<std::uint32_t, 4>{x.a.index, x.b.index, x.child_a, x.child_b}; };
+            const auto key = [](const Contact<T>& x) {
+                return std::array<std::uint32_t, 4>{x.a.index, x.b.index, x.child_a, x.child_b};
+            };
             if (!(key(p) < key(c))) detail::report_corrupt("contacts are not sorted by body pair and part; contact", k);
         }
         const Manifold<T>& m = c.manifold;
-        if (m.count < 0 || m.count > Manifold<T>::capacity) detail::report_corrupt("a manifold's point count is not 0 … 4; contact", k);
+        if (m.count < 0 || m.count > Manifold<T>::capacity)
+            detail::report_corrupt("a manifold's point count is not 0 … 4; contact", k);
         bool ok = is_finite(m.normal) && (m.count == 0 || detail::unit_vector(m.normal)) && is_finite(m.friction_impulse) &&
                   std::isfinite(m.twist_impulse) && std::isfinite(c.friction) && c.friction >= T(0) && c.restitution >= T(0) &&
                   c.restitution <= T(1);
@@ -484,7 +523,8 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
                  std::isfinite(p.step_impulse) && p.step_impulse >= T(0) && linear_ok(p.normal_impulse, c.a.index, c.b.index) &&
                  linear_ok(p.max_normal_impulse, c.a.index, c.b.index) && linear_ok(p.step_impulse, c.a.index, c.b.index);
         }
-        ok = ok && linear_ok(length(m.friction_impulse), c.a.index, c.b.index) && angular_ok(m.twist_impulse, c.a.index, c.b.index);
+        ok = ok && linear_ok(length(m.friction_impulse), c.a.index, c.b.index) &&
+             angular_ok(m.twist_impulse, c.a.index, c.b.index);
         if (!ok) detail::report_corrupt("a contact's normal, points, impulses or material are out of range; contact", k);
     }
     // Joints: types, bools, living distinct bodies, finite frames; free joints = dead joints.
@@ -495,27 +535,32 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
         if (!detail::raw_bool_ok(j.alive) || !detail::raw_bool_ok(j.enable_limit) || !detail::raw_bool_ok(j.enable_motor) ||
             !detail::raw_bool_ok(j.collide_connected))
             detail::report_corrupt("a joint's bool byte is neither 0 nor 1; joint", k);
-        if (detail::raw_enum(j.type) > detail::raw_enum(JointType::distance)) detail::report_corrupt("a joint's type is not a JointType; joint", k);
+        if (detail::raw_enum(j.type) > detail::raw_enum(JointType::distance))
+            detail::report_corrupt("a joint's type is not a JointType; joint", k);
         if (!j.alive) continue;
-        if (!living(j.a) || !living(j.b) || j.a.index == j.b.index) detail::report_corrupt("a joint does not join two living bodies; joint", k);
+        if (!living(j.a) || !living(j.b) || j.a.index == j.b.index)
+            detail::report_corrupt("a joint does not join two living bodies; joint", k);
         if (w.bodies_[j.a.index].type_ == BodyType::static_body && w.bodies_[j.b.index].type_ == BodyType::static_body)
             detail::report_corrupt("a joint joins two static bodies; joint", k);
-        bool ok = is_finite(j.local_anchor_a) && is_finite(j.local_anchor_b) && is_finite(j.local_axis_a) && is_finite(j.local_axis_b) &&
-                  is_finite(j.local_ref_a) && is_finite(j.local_ref_b) && detail::unit_quat(j.relative_rotation) && std::isfinite(j.length) &&
-                  std::isfinite(j.lower_angle) && std::isfinite(j.upper_angle) && j.lower_angle <= j.upper_angle &&
-                  std::isfinite(j.motor_speed) && std::isfinite(j.max_motor_torque) && j.max_motor_torque >= T(0) &&
-                  is_finite(j.linear_impulse) && is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) && std::isfinite(j.motor_impulse) &&
-                  linear_ok(length(j.linear_impulse), j.a.index, j.b.index) && angular_ok(length(j.angular_impulse), j.a.index, j.b.index) &&
+        bool ok = is_finite(j.local_anchor_a) && is_finite(j.local_anchor_b) && is_finite(j.local_axis_a) &&
+                  is_finite(j.local_axis_b) && is_finite(j.local_ref_a) && is_finite(j.local_ref_b) &&
+                  detail::unit_quat(j.relative_rotation) && std::isfinite(j.length) && std::isfinite(j.lower_angle) &&
+                  std::isfinite(j.upper_angle) && j.lower_angle <= j.upper_angle && std::isfinite(j.motor_speed) &&
+                  std::isfinite(j.max_motor_torque) && j.max_motor_torque >= T(0) && is_finite(j.linear_impulse) &&
+                  is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) && std::isfinite(j.motor_impulse) &&
+                  linear_ok(length(j.linear_impulse), j.a.index, j.b.index) &&
+                  angular_ok(length(j.angular_impulse), j.a.index, j.b.index) &&
                   linear_ok(j.axial_impulse, j.a.index, j.b.index) && angular_ok(j.axial_impulse, j.a.index, j.b.index) &&
                   angular_ok(j.motor_impulse, j.a.index, j.b.index);
         if (ok && j.type == JointType::hinge)
-            ok = detail::unit_vector(j.local_axis_a) && detail::unit_vector(j.local_axis_b) && detail::unit_vector(j.local_ref_a) &&
-                 detail::unit_vector(j.local_ref_b);
+            ok = detail::unit_vector(j.local_axis_a) && detail::unit_vector(j.local_axis_b) &&
+                 detail::unit_vector(j.local_ref_a) && detail::unit_vector(j.local_ref_b);
         if (!ok) detail::report_corrupt("a joint's frames, limits or impulses are out of range; joint", k);
     }
     std::vector<std::uint8_t> free_joint(nj, 0);
     for (const std::uint32_t f : w.free_joints_) {
-        if (f >= nj || w.joints_[f].alive || free_joint[f]++) detail::report_corrupt("a free joint slot is out of range, alive or listed twice; slot", f);
+        if (f >= nj || w.joints_[f].alive || free_joint[f]++)
+            detail::report_corrupt("a free joint slot is out of range, alive or listed twice; slot", f);
     }
     for (std::size_t k = 0; k < nj; ++k)
         if (!w.joints_[k].alive && !free_joint[k]) detail::report_corrupt("a dead joint slot is not listed as free; slot", k);
@@ -523,7 +568,8 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
     for (std::size_t k = 0; k < w.events_pending_.size(); ++k) {
         const ContactEvent<T>& e = w.events_pending_[k];
         const auto kind = detail::raw_enum(e.kind);
-        if (!detail::raw_bool_ok(e.sensor) || kind < detail::raw_enum(ContactEventKind::began) || kind > detail::raw_enum(ContactEventKind::ended))
+        if (!detail::raw_bool_ok(e.sensor) || kind < detail::raw_enum(ContactEventKind::began) ||
+            kind > detail::raw_enum(ContactEventKind::ended))
             detail::report_corrupt("a pending event's kind or bool byte is out of range; event", k);
         bool ok = e.count >= 0 && e.count <= 4 && is_finite(e.normal) && std::isfinite(e.impulse);
         for (const Vec3<T>& p : e.points) ok = ok && is_finite(p);

@@ -21,10 +21,10 @@ namespace detail {
 /// relies on this order); the masses, read only when rows are prepared, live in SolverMass.
 template <class T>
 struct SolverBody {
-    Vec3<T> v{};                             ///< m/s
-    Vec3<T> w{};                             ///< rad/s
-    Vec3<T> dp{};                            ///< m, position change since the step began
-    Quat<T> dq = Quat<T>::identity();        ///< rotation since the step began (world)
+    Vec3<T> v{};                       ///< m/s
+    Vec3<T> w{};                       ///< rad/s
+    Vec3<T> dp{};                      ///< m, position change since the step began
+    Quat<T> dq = Quat<T>::identity();  ///< rotation since the step began (world)
 
     /// Velocity of the material point at offset r.
     Vec3<T> velocity_at(const Vec3<T>& r) const { return v + cross(w, r); }
@@ -36,8 +36,8 @@ static_assert(sizeof(SolverBody<double>) == 13 * sizeof(double), "the hot state 
 /// carry a copy of their two bodies'; contact rows fold them into their Jacobians.
 template <class T>
 struct SolverMass {
-    T inv_mass{};                            ///< 1/kg, 0 for static and kinematic
-    Mat3<T> inv_inertia{};                   ///< world
+    T inv_mass{};           ///< 1/kg, 0 for static and kinematic
+    Mat3<T> inv_inertia{};  ///< world
 };
 
 /// Applies an impulse P (N·s) at offset r from the centre of mass: Δv = P/m, Δω = I⁻¹ (r × P).
@@ -53,7 +53,7 @@ void apply_impulse(SolverBody<T>& body, const SolverMass<T>& mass, const Vec3<T>
 /// impulse_scale = 1/(1 + hω(2ζ + hω)). hertz = 0 gives a rigid row without bias.
 template <class T>
 struct Softness {
-    T bias_rate = T(0);      ///< 1/s: fraction of the position error turned into velocity per second
+    T bias_rate = T(0);  ///< 1/s: fraction of the position error turned into velocity per second
     T mass_scale = T(1);
     T impulse_scale = T(0);
 

@@ -42,11 +42,11 @@ struct WidePoint {
 template <class T, int W>
 struct WideContact {
     using V = Wide<T, W>;
-    std::uint32_t a[W], b[W];        ///< solver bodies (0: static stand-in)
-    std::uint32_t row[W];            ///< index into the scalar rows (padding: ~0)
-    int max_count;                   ///< points of the fullest lane
-    int min_count;                   ///< points of the emptiest lane that holds a manifold
-    V count;                         ///< points per lane
+    std::uint32_t a[W], b[W];  ///< solver bodies (0: static stand-in)
+    std::uint32_t row[W];      ///< index into the scalar rows (padding: ~0)
+    int max_count;             ///< points of the fullest lane
+    int min_count;             ///< points of the emptiest lane that holds a manifold
+    V count;                   ///< points per lane
     WideVec3<V> normal, t1, t2;
     V inv_mass_a, inv_mass_b, friction;
     V bias_rate, mass_scale, impulse_scale;  ///< the lane's softness
@@ -54,7 +54,7 @@ struct WideContact {
     WideVec3<V> a1, a2, b1, b2;      ///< rc × t1, rc × t2 for A and B
     WideVec3<V> ia1, ia2, ib1, ib2;  ///< I⁻¹ of those
     V k11, k12, k22, friction_1, friction_2;
-    WideVec3<V> ia_n, ib_n;          ///< I⁻¹ n
+    WideVec3<V> ia_n, ib_n;                       ///< I⁻¹ n
     V twist_mass, twist_impulse, twist_friction;  ///< twist_friction: µ × the mean lever
 };
 
@@ -69,13 +69,15 @@ struct WideBody {
 /// one record (load_transposed): the layout this relies on.
 template <class T>
 constexpr bool solver_body_is_a_record() {
-    return std::is_standard_layout_v<SolverBody<T>> && offsetof(SolverBody<T>, v) == 0 && offsetof(SolverBody<T>, w) == 3 * sizeof(T) &&
-           offsetof(SolverBody<T>, dp) == 6 * sizeof(T) && offsetof(SolverBody<T>, dq) == 9 * sizeof(T) && sizeof(Vec3<T>) == 3 * sizeof(T) &&
-           sizeof(Quat<T>) == 4 * sizeof(T) && offsetof(Quat<T>, w) == 0;
+    return std::is_standard_layout_v<SolverBody<T>> && offsetof(SolverBody<T>, v) == 0 &&
+           offsetof(SolverBody<T>, w) == 3 * sizeof(T) && offsetof(SolverBody<T>, dp) == 6 * sizeof(T) &&
+           offsetof(SolverBody<T>, dq) == 9 * sizeof(T) && sizeof(Vec3<T>) == 3 * sizeof(T) && sizeof(Quat<T>) == 4 * sizeof(T) &&
+           offsetof(Quat<T>, w) == 0;
 }
 
 template <class T, int W>
-XENO_WIDE_INLINE WideBody<Wide<T, W>> gather(const std::vector<SolverBody<T>>& bodies, const std::uint32_t (&index)[W], bool displacement) {
+XENO_WIDE_INLINE WideBody<Wide<T, W>> gather(const std::vector<SolverBody<T>>& bodies, const std::uint32_t (&index)[W],
+                                             bool displacement) {
     static_assert(solver_body_is_a_record<T>());
     using V = Wide<T, W>;
     const T* src[W];
@@ -95,7 +97,8 @@ XENO_WIDE_INLINE WideBody<Wide<T, W>> gather(const std::vector<SolverBody<T>>& b
 /// Writes the lanes' velocities back; the static stand-in (padding and static sides) is written
 /// to a scratch record instead.
 template <class T, int W>
-XENO_WIDE_INLINE void scatter(const WideBody<Wide<T, W>>& g, std::vector<SolverBody<T>>& bodies, const std::uint32_t (&index)[W]) {
+XENO_WIDE_INLINE void scatter(const WideBody<Wide<T, W>>& g, std::vector<SolverBody<T>>& bodies,
+                              const std::uint32_t (&index)[W]) {
     T sink[W][6];
     T* dst[W];
     for (int l = 0; l < W; ++l) dst[l] = index[l] == 0 ? sink[l] : reinterpret_cast<T*>(&bodies[index[l]]);
@@ -106,8 +109,9 @@ XENO_WIDE_INLINE void scatter(const WideBody<Wide<T, W>>& g, std::vector<SolverB
 /// Applies an impulse along the lanes' directions to both bodies where `m` holds (every lane
 /// when `masked` is false): A gets −(lin × λ) / −(ang_a λ), B gets +(lin × λ) / +(ang_b λ).
 template <class V>
-XENO_WIDE_INLINE void apply_wide(WideBody<V>& A, WideBody<V>& B, bool masked, const typename V::Mask& m, const WideVec3<V>& lin, const V& lambda,
-                                 const V& inv_mass_a, const V& inv_mass_b, const WideVec3<V>& ang_a, const WideVec3<V>& ang_b) {
+XENO_WIDE_INLINE void apply_wide(WideBody<V>& A, WideBody<V>& B, bool masked, const typename V::Mask& m, const WideVec3<V>& lin,
+                                 const V& lambda, const V& inv_mass_a, const V& inv_mass_b, const WideVec3<V>& ang_a,
+                                 const WideVec3<V>& ang_b) {
     const WideVec3<V> va = A.v - lin * (lambda * inv_mass_a), wa = A.w - ang_a * lambda;
     const WideVec3<V> vb = B.v + lin * (lambda * inv_mass_b), wb = B.w + ang_b * lambda;
     A.v = masked ? select(m, va, A.v) : va;
@@ -124,7 +128,8 @@ void warm_start_wide(const WideContact<T, W>& c, std::vector<SolverBody<T>>& bod
     WideBody<V> A = gather<T, W>(bodies, c.a, false), B = gather<T, W>(bodies, c.b, false);
     for (int i = 0; i < c.max_count; ++i) {
         const WidePoint<V>& p = c.points[i];
-        apply_wide(A, B, i >= c.min_count, V::splat(T(i)) < c.count, c.normal, p.normal_impulse, c.inv_mass_a, c.inv_mass_b, p.ia, p.ib);
+        apply_wide(A, B, i >= c.min_count, V::splat(T(i)) < c.count, c.normal, p.normal_impulse, c.inv_mass_a, c.inv_mass_b, p.ia,
+                   p.ib);
     }
     // Padding lanes need no mask: they write to the static stand-in, which scatter skips.
     const WideVec3<V> f = c.t1 * c.friction_1 + c.t2 * c.friction_2;
@@ -217,7 +222,8 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
 
 /// Fills lane `l` of a group from the scalar row and the bodies' frozen masses.
 template <class T, int W>
-void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactConstraint<T>& k, const std::vector<SolverMass<T>>& masses) {
+void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactConstraint<T>& k,
+               const std::vector<SolverMass<T>>& masses) {
     const SolverMass<T>& sa = masses[k.a];
     const SolverMass<T>& sb = masses[k.b];
     auto put = [l](WideVec3<Wide<T, W>>& dst, const Vec3<T>& v) { dst.x.set(l, v.x), dst.y.set(l, v.y), dst.z.set(l, v.z); };
@@ -227,7 +233,8 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
     c.count.set(l, static_cast<T>(k.count));
     put(c.normal, k.normal), put(c.t1, k.t1), put(c.t2, k.t2);
     c.inv_mass_a.set(l, sa.inv_mass), c.inv_mass_b.set(l, sb.inv_mass), c.friction.set(l, k.friction);
-    c.bias_rate.set(l, k.softness.bias_rate), c.mass_scale.set(l, k.softness.mass_scale), c.impulse_scale.set(l, k.softness.impulse_scale);
+    c.bias_rate.set(l, k.softness.bias_rate), c.mass_scale.set(l, k.softness.mass_scale),
+        c.impulse_scale.set(l, k.softness.impulse_scale);
     for (int i = 0; i < k.count; ++i) {
         const ContactConstraintPoint<T>& q = k.points[static_cast<std::size_t>(i)];
         WidePoint<Wide<T, W>>& p = c.points[i];
@@ -235,14 +242,18 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
         put(p.r_a, q.r_a), put(p.r_b, q.r_b), put(p.rn_a, rn_a), put(p.rn_b, rn_b);
         put(p.ia, sa.inv_inertia * rn_a), put(p.ib, sb.inv_inertia * rn_b);
         p.adjusted_separation.set(l, q.adjusted_separation), p.normal_mass.set(l, q.normal_mass);
-        p.normal_impulse.set(l, q.normal_impulse), p.max_normal_impulse.set(l, q.max_normal_impulse), p.step_impulse.set(l, q.step_impulse);
+        p.normal_impulse.set(l, q.normal_impulse), p.max_normal_impulse.set(l, q.max_normal_impulse),
+            p.step_impulse.set(l, q.step_impulse);
     }
     const Vec3<T> a1 = cross(k.rc_a, k.t1), a2 = cross(k.rc_a, k.t2), b1 = cross(k.rc_b, k.t1), b2 = cross(k.rc_b, k.t2);
     put(c.a1, a1), put(c.a2, a2), put(c.b1, b1), put(c.b2, b2);
-    put(c.ia1, sa.inv_inertia * a1), put(c.ia2, sa.inv_inertia * a2), put(c.ib1, sb.inv_inertia * b1), put(c.ib2, sb.inv_inertia * b2);
-    c.k11.set(l, k.k11), c.k12.set(l, k.k12), c.k22.set(l, k.k22), c.friction_1.set(l, k.friction_1), c.friction_2.set(l, k.friction_2);
+    put(c.ia1, sa.inv_inertia * a1), put(c.ia2, sa.inv_inertia * a2), put(c.ib1, sb.inv_inertia * b1),
+        put(c.ib2, sb.inv_inertia * b2);
+    c.k11.set(l, k.k11), c.k12.set(l, k.k12), c.k22.set(l, k.k22), c.friction_1.set(l, k.friction_1),
+        c.friction_2.set(l, k.friction_2);
     put(c.ia_n, sa.inv_inertia * k.normal), put(c.ib_n, sb.inv_inertia * k.normal);
-    c.twist_mass.set(l, k.twist_mass), c.twist_impulse.set(l, k.twist_impulse), c.twist_friction.set(l, k.friction * k.twist_lever);
+    c.twist_mass.set(l, k.twist_mass), c.twist_impulse.set(l, k.twist_impulse),
+        c.twist_friction.set(l, k.friction * k.twist_lever);
 }
 
 /// Copies lane `l`'s impulses back into its scalar row (for restitution, events and the next
@@ -271,7 +282,8 @@ public:
 
     /// Colours and packs `rows` (their bodies' masses frozen in `masses`).
     void build(const std::vector<ContactConstraint<T>>& rows, const std::vector<SolverMass<T>>& masses) {
-        colouring_.build(rows.size(), masses.size(), [&](std::size_t i) { return rows[i].a; }, [&](std::size_t i) { return rows[i].b; });
+        colouring_.build(
+            rows.size(), masses.size(), [&](std::size_t i) { return rows[i].a; }, [&](std::size_t i) { return rows[i].b; });
         groups_.clear();
         for (int colour = 0; colour < ConstraintColouring::colours; ++colour) {
             const std::uint32_t begin = colouring_.colour_begin[static_cast<std::size_t>(colour)];

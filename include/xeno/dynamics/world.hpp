@@ -66,11 +66,11 @@ template <class T>
 struct ContactEvent {
     ContactEventKind kind = ContactEventKind::began;
     BodyId a, b;
-    bool sensor = false;                 ///< one of the bodies is a sensor (overlap, no response)
-    Vec3<T> normal{};                    ///< unit, world, from A to B
-    int count = 0;                       ///< contact points (0 for ended events)
-    std::array<Vec3<T>, 4> points{};     ///< m, world: the middle of each contact point pair
-    T impulse{};                         ///< N·s: total normal impulse over the step (0 for sensors)
+    bool sensor = false;              ///< one of the bodies is a sensor (overlap, no response)
+    Vec3<T> normal{};                 ///< unit, world, from A to B
+    int count = 0;                    ///< contact points (0 for ended events)
+    std::array<Vec3<T>, 4> points{};  ///< m, world: the middle of each contact point pair
+    T impulse{};                      ///< N·s: total normal impulse over the step (0 for sensors)
 };
 
 /// A ray hit on a body of the world.
@@ -87,7 +87,7 @@ struct StepStats {
     std::size_t contacts = 0;        ///< manifolds with at least one point
     std::size_t contact_points = 0;  ///< rows solved
     std::size_t awake_bodies = 0;
-    std::size_t colours = 0;         ///< colours the solved manifolds took (docs/solver.md, "Colours")
+    std::size_t colours = 0;            ///< colours the solved manifolds took (docs/solver.md, "Colours")
     std::size_t overflow_contacts = 0;  ///< manifolds no colour could take, solved one at a time
 };
 
@@ -269,7 +269,8 @@ private:
         return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
     }
     void rebuild_joint_pairs();
-    BodyId create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound, const BodyDef<T>& def);
+    BodyId create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
+                            const BodyDef<T>& def);
     void collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, std::vector<Contact<T>>& next);
     void prepare_joints(T h);
     BodyId id_of(std::uint32_t slot) const { return {slot, bodies_[slot].generation_}; }
@@ -304,18 +305,18 @@ private:
     }
 
     WorldSettings<T> settings_;
-    std::deque<Body<T>> bodies_;                  ///< a deque: references stay valid as it grows
+    std::deque<Body<T>> bodies_;  ///< a deque: references stay valid as it grows
     std::vector<std::uint32_t> free_slots_;
-    std::vector<Aabb<T>> bounds_;                 ///< per slot; empty for free slots
-    std::vector<Transform<T>> previous_pose_;     ///< per slot: pose before the last step
+    std::vector<Aabb<T>> bounds_;              ///< per slot; empty for free slots
+    std::vector<Transform<T>> previous_pose_;  ///< per slot: pose before the last step
     SweepAndPrune<T> sweep_;
     AabbTree<T> tree_;
     std::vector<ProxyPair> pairs_;
-    std::vector<Contact<T>> contacts_;            ///< sorted by (a.index, b.index)
-    std::vector<detail::SolverBody<T>> solver_bodies_;    ///< slot 0: static stand-in
-    std::vector<detail::SolverMass<T>> solver_masses_;    ///< per solver body
-    std::vector<std::uint32_t> solver_index_;     ///< per slot: index into solver_bodies_ (0: none)
-    std::vector<std::uint32_t> solver_slot_;      ///< per solver body: its slot
+    std::vector<Contact<T>> contacts_;                     ///< sorted by (a.index, b.index)
+    std::vector<detail::SolverBody<T>> solver_bodies_;     ///< slot 0: static stand-in
+    std::vector<detail::SolverMass<T>> solver_masses_;     ///< per solver body
+    std::vector<std::uint32_t> solver_index_;              ///< per slot: index into solver_bodies_ (0: none)
+    std::vector<std::uint32_t> solver_slot_;               ///< per solver body: its slot
     std::vector<detail::BodyIntegration<T>> integration_;  ///< per solver body: the step's constants
     std::vector<detail::ContactConstraint<T>> constraints_;
     detail::WideContactRows<T> wide_rows_;  ///< constraints_ coloured and packed in SIMD lanes
@@ -325,19 +326,19 @@ private:
     std::vector<std::uint64_t> unconnected_pairs_;  ///< sorted keys of jointed pairs that do not collide
     StepStats stats_;
     std::vector<ContactEvent<T>> events_, events_pending_;
-    std::shared_ptr<const Listener> listener_;    ///< shared: a running listener outlives its replacement
+    std::shared_ptr<const Listener> listener_;  ///< shared: a running listener outlives its replacement
     std::function<bool(BodyId, BodyId)> filter_;
     T accumulator_{};
     // Scratch kept between steps so a settled step allocates nothing.
-    std::vector<Contact<T>> next_contacts_;       ///< narrow phase output, swapped with contacts_
-    std::vector<std::uint32_t> island_parent_;    ///< union–find parents per slot (wake, sleep)
-    std::vector<std::uint8_t> island_flag_;       ///< per island root: wake it
-    std::vector<T> island_sleep_time_;            ///< per island root: the least sleep clock
-    std::vector<std::uint32_t> pair_degree_;      ///< per slot: broad-phase pairs (crowd thinning)
-    std::vector<std::uint64_t> crowd_histogram_;  ///< pairs by crowd size (crowd thinning)
+    std::vector<Contact<T>> next_contacts_;          ///< narrow phase output, swapped with contacts_
+    std::vector<std::uint32_t> island_parent_;       ///< union–find parents per slot (wake, sleep)
+    std::vector<std::uint8_t> island_flag_;          ///< per island root: wake it
+    std::vector<T> island_sleep_time_;               ///< per island root: the least sleep clock
+    std::vector<std::uint32_t> pair_degree_;         ///< per slot: broad-phase pairs (crowd thinning)
+    std::vector<std::uint64_t> crowd_histogram_;     ///< pairs by crowd size (crowd thinning)
     std::vector<ContactEvent<T>> delivered_events_;  ///< the listener's copy of events_
-    bool in_filter_ = false;    ///< the contact filter is running: mutating calls are rejected
-    bool in_listener_ = false;  ///< the contact listener is running: step() and update() are rejected
+    bool in_filter_ = false;                         ///< the contact filter is running: mutating calls are rejected
+    bool in_listener_ = false;                       ///< the contact listener is running: step() and update() are rejected
 };
 
 template <class T>
@@ -368,11 +369,15 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     detail::require_at_most(def.gravity_scale, ScalarTraits<T>::max_size, where, "gravity_scale");
     const Vec3<T> centre = shape ? interior_point(*shape) : Vec3<T>::zero();
     if (shape && length(centre) > T(1e-4) * bounding_radius(*shape))
-        detail::report_invalid(where, "the shape's centre of mass must be its local origin (make_convex_hull and ConvexPolyhedron::recentered() re-centre); distance (m)", static_cast<double>(length(centre)));
+        detail::report_invalid(where,
+                               "the shape's centre of mass must be its local origin (make_convex_hull and "
+                               "ConvexPolyhedron::recentered() re-centre); distance (m)",
+                               static_cast<double>(length(centre)));
 
     // Every check comes before the first change: a rejected body leaves the world as it was.
     if (def.type != BodyType::static_body && def.type != BodyType::kinematic && def.type != BodyType::dynamic)
-        detail::report_invalid(where, "type must be static_body, kinematic or dynamic; type", static_cast<double>(static_cast<std::uint8_t>(def.type)));
+        detail::report_invalid(where, "type must be static_body, kinematic or dynamic; type",
+                               static_cast<double>(static_cast<std::uint8_t>(def.type)));
 
     // Mass properties before a slot is taken, so a rejected body leaves no trace.
     MassProperties<T> mass;
@@ -393,8 +398,9 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
         // here, not in set_mass_properties once the slot is taken.
         if (!(std::isfinite(mass.mass) && mass.mass > T(0) && is_finite(mass.inertia) && mass.inertia[0].x > T(0) &&
               mass.inertia[1].y > T(0) && mass.inertia[2].z > T(0)))
-            detail::report_invalid(where, "mass and inertia (density or mass times the shape's) must be finite and > 0 in this precision; mass",
-                                   static_cast<double>(mass.mass));
+            detail::report_invalid(
+                where, "mass and inertia (density or mass times the shape's) must be finite and > 0 in this precision; mass",
+                static_cast<double>(mass.mass));
         // The checks set_mass_properties makes (a positive-definite inertia with a finite
         // inverse), made here, before the slot is taken.
         detail::check_mass_properties(mass, shape ? bounding_radius(*shape) : compound->bounding_radius(), where);
@@ -454,8 +460,10 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
     require_outside_filter(where);
     const std::uint32_t ia = checked(def.a, where), ib = checked(def.b, where);
     if (ia == ib) detail::report_invalid(where, "a joint needs two different bodies; body index", static_cast<double>(ia));
-    if (def.type != JointType::ball && def.type != JointType::hinge && def.type != JointType::fixed && def.type != JointType::distance)
-        detail::report_invalid(where, "type must be ball, hinge, fixed or distance; type", static_cast<double>(static_cast<std::uint8_t>(def.type)));
+    if (def.type != JointType::ball && def.type != JointType::hinge && def.type != JointType::fixed &&
+        def.type != JointType::distance)
+        detail::report_invalid(where, "type must be ball, hinge, fixed or distance; type",
+                               static_cast<double>(static_cast<std::uint8_t>(def.type)));
     const Body<T>& a = bodies_[ia];
     const Body<T>& b = bodies_[ib];
     if (a.type_ == BodyType::static_body && b.type_ == BodyType::static_body)
@@ -472,7 +480,8 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
     if (def.type == JointType::hinge) {
         const std::optional<Vec3<T>> axis = is_finite(def.axis) ? try_normalized(def.axis) : std::nullopt;
         detail::require_finite_xyz(def.axis, where, "axis");
-        if (!axis) detail::report_invalid(where, "hinge axis must be non-zero; its length", static_cast<double>(length(def.axis)));
+        if (!axis)
+            detail::report_invalid(where, "hinge axis must be non-zero; its length", static_cast<double>(length(def.axis)));
         j.local_axis_a = a.local_vector(*axis);
         j.local_axis_b = b.local_vector(*axis);
         const Vec3<T> ref = any_perpendicular(*axis);
@@ -482,7 +491,8 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
             detail::require_finite(def.lower_angle, where, "lower_angle");
             detail::require_finite(def.upper_angle, where, "upper_angle");
             if (def.lower_angle > def.upper_angle)
-                detail::report_invalid(where, "lower_angle must be <= upper_angle; lower - upper", static_cast<double>(def.lower_angle - def.upper_angle));
+                detail::report_invalid(where, "lower_angle must be <= upper_angle; lower - upper",
+                                       static_cast<double>(def.lower_angle - def.upper_angle));
         }
         detail::require_finite(def.motor_speed, where, "motor_speed");
         detail::require_non_negative(def.max_motor_torque, where, "max_motor_torque");
@@ -533,7 +543,8 @@ void World<T>::set_hinge_motor(JointId id, bool enable, T speed, T max_torque) {
     const char* where = "World::set_hinge_motor";
     require_outside_filter(where);
     Joint<T>& j = joints_[checked(id, where)];
-    if (j.type != JointType::hinge) detail::report_invalid(where, "the joint is not a hinge; its type", static_cast<double>(j.type));
+    if (j.type != JointType::hinge)
+        detail::report_invalid(where, "the joint is not a hinge; its type", static_cast<double>(j.type));
     detail::require_finite(speed, where, "speed");
     detail::require_non_negative(max_torque, where, "max_torque");
     j.enable_motor = enable;
@@ -556,7 +567,8 @@ void World<T>::prepare_joints(T h) {
     joint_rows_.clear();
     using detail::Softness;
     const Softness<T> soft = Softness<T>::make(std::min(settings_.joint_hertz, T(0.25) / h), settings_.joint_damping_ratio, h);
-    const Softness<T> limit_soft = Softness<T>::make(std::min(settings_.contact_hertz, T(0.125) / h), settings_.contact_damping_ratio, h);
+    const Softness<T> limit_soft =
+        Softness<T>::make(std::min(settings_.contact_hertz, T(0.125) / h), settings_.contact_damping_ratio, h);
     for (std::uint32_t i = 0; i < joints_.size(); ++i) {
         Joint<T>& j = joints_[i];
         if (!j.alive) continue;
@@ -609,7 +621,8 @@ void World<T>::destroy_body(BodyId id) {
                                    }),
                     contacts_.end());
     for (std::uint32_t i = 0; i < joints_.size(); ++i)
-        if (joints_[i].alive && (joints_[i].a.index == slot || joints_[i].b.index == slot)) destroy_joint({i, joints_[i].generation});
+        if (joints_[i].alive && (joints_[i].a.index == slot || joints_[i].b.index == slot))
+            destroy_joint({i, joints_[i].generation});
     Body<T>& b = bodies_[slot];
     b.alive_ = false;
     b.shape_.reset();
@@ -641,8 +654,10 @@ std::vector<WorldRayHit<T>> World<T>::raycast_all(const Ray<T>& ray) const {
     const char* where = "World::raycast";
     detail::require_finite_xyz(ray.origin, where, "ray.origin");
     if (!is_finite(ray.direction) || std::abs(length(ray.direction) - T(1)) > T(1e-3))
-        detail::report_invalid(where, "ray direction must be a unit vector; its length", static_cast<double>(length(ray.direction)));
-    if (!(ray.max_distance > T(0))) detail::report_invalid(where, "ray max_distance must be > 0", static_cast<double>(ray.max_distance));
+        detail::report_invalid(where, "ray direction must be a unit vector; its length",
+                               static_cast<double>(length(ray.direction)));
+    if (!(ray.max_distance > T(0)))
+        detail::report_invalid(where, "ray max_distance must be > 0", static_cast<double>(ray.max_distance));
     std::vector<WorldRayHit<T>> hits;
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         const Body<T>& b = bodies_[i];
@@ -686,8 +701,7 @@ std::vector<BodyId> World<T>::query_aabb(const Aabb<T>& box) const {
     detail::require_finite_xyz(box.max, "World::query_aabb", "box.max");
     std::vector<BodyId> out;
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
-        if (bodies_[i].alive_ && overlaps(bounds_[i], box) && overlaps(bodies_[i].world_bounds(), box))
-            out.push_back(id_of(i));
+        if (bodies_[i].alive_ && overlaps(bounds_[i], box) && overlaps(bodies_[i].world_bounds(), box)) out.push_back(id_of(i));
     return out;
 }
 
@@ -884,13 +898,14 @@ void World<T>::narrow_phase(T dt) {
                (contacts_[old].a.index < pair.a || (contacts_[old].a.index == pair.a && contacts_[old].b.index < pair.b)))
             end_contact(contacts_[old++]);
         std::size_t old_end = old;
-        while (old_end < contacts_.size() && contacts_[old_end].a.index == pair.a && contacts_[old_end].b.index == pair.b) ++old_end;
+        while (old_end < contacts_.size() && contacts_[old_end].a.index == pair.a && contacts_[old_end].b.index == pair.b)
+            ++old_end;
         const Body<T>& a = bodies_[pair.a];
         const Body<T>& b = bodies_[pair.b];
         // (A free slot's box is empty and pairs with nothing; checked anyway, so a broad phase
         // can never hand a destroyed body to the narrow phase.)
-        const bool wanted = a.alive_ && b.alive_ && (a.type_ == BodyType::dynamic || b.type_ == BodyType::dynamic) && (a.layer_ & b.mask_) &&
-                            (b.layer_ & a.mask_) &&
+        const bool wanted = a.alive_ && b.alive_ && (a.type_ == BodyType::dynamic || b.type_ == BodyType::dynamic) &&
+                            (a.layer_ & b.mask_) && (b.layer_ & a.mask_) &&
                             !std::binary_search(unconnected_pairs_.begin(), unconnected_pairs_.end(), pair_key(pair.a, pair.b)) &&
                             filter_allows(pair.a, pair.b);
         if (!wanted) {
@@ -914,7 +929,8 @@ void World<T>::narrow_phase(T dt) {
 }
 
 template <class T>
-void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, std::vector<Contact<T>>& next) {
+void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end,
+                            std::vector<Contact<T>>& next) {
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
     const bool parts = a.compound_ || b.compound_;
@@ -924,7 +940,8 @@ void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_beg
         const Aabb<T> box_a = parts ? world_bounds(a.child_shape(ca), pose_a).expanded(margin) : Aabb<T>{};
         for (std::uint32_t cb = 0; cb < b.child_count(); ++cb) {
             // Last step's contact of these two parts, if any (both lists are in part order).
-            while (old < old_end && (contacts_[old].child_a < ca || (contacts_[old].child_a == ca && contacts_[old].child_b < cb)))
+            while (old < old_end &&
+                   (contacts_[old].child_a < ca || (contacts_[old].child_a == ca && contacts_[old].child_b < cb)))
                 end_contact(contacts_[old++]);
             const bool had = old < old_end && contacts_[old].child_a == ca && contacts_[old].child_b == cb;
             const Transform<T> pose_b = b.child_transform(cb);
@@ -946,9 +963,9 @@ void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_beg
             c.restitution = combined_restitution(a.material_, b.material_);
             c.sensor = a.sensor_ || b.sensor_;
             if (fresh.count == 1 && had && c.manifold.count > 0)
-                c.manifold.merge_single(fresh.points[0], fresh.normal, a.transform(), b.transform(), settings_.contact_match_distance, margin);
-            else
-                c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
+                c.manifold.merge_single(fresh.points[0], fresh.normal, a.transform(), b.transform(),
+                                        settings_.contact_match_distance, margin);
+            else c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
             c.touching = c.manifold.touching();
             for (int i = 0; i < c.manifold.count; ++i) c.manifold.points[static_cast<std::size_t>(i)].step_impulse = T(0);
             next.push_back(c);
@@ -992,7 +1009,8 @@ void World<T>::build_islands() {
     std::iota(parent.begin(), parent.end(), 0u);
     auto dynamic = [&](std::uint32_t slot) { return bodies_[slot].type_ == BodyType::dynamic; };
     for (const Contact<T>& c : contacts_)
-        if (c.touching && !c.sensor && dynamic(c.a.index) && dynamic(c.b.index)) parent[island_root(c.a.index)] = island_root(c.b.index);
+        if (c.touching && !c.sensor && dynamic(c.a.index) && dynamic(c.b.index))
+            parent[island_root(c.a.index)] = island_root(c.b.index);
     for (const Joint<T>& j : joints_)
         if (j.alive && dynamic(j.a.index) && dynamic(j.b.index)) parent[island_root(j.a.index)] = island_root(j.b.index);
 }
@@ -1078,8 +1096,8 @@ void World<T>::prepare(T dt) {
     const T contact_hertz = std::min(settings_.contact_hertz, T(0.125) / h);
     using detail::Softness;
     const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
-    const Softness<T> soft_static =
-        Softness<T>::make(std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h), settings_.contact_damping_ratio, h);
+    const Softness<T> soft_static = Softness<T>::make(std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h),
+                                                      settings_.contact_damping_ratio, h);
     for (std::uint32_t m = 0; m < contacts_.size(); ++m) {
         const Contact<T>& contact = contacts_[m];
         if (contact.sensor || contact.manifold.count == 0) continue;
@@ -1173,7 +1191,8 @@ detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, con
     in.gyroscopic = !b.isotropic_;
     in.linear_damping = b.linear_damping_;
     in.angular_damping = b.angular_damping_;
-    in.max_spin = settings_.max_rotation_per_step / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1) / h;
+    in.max_spin =
+        settings_.max_rotation_per_step / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1) / h;
     in.max_speed = speed_limit(b);
     return in;
 }
@@ -1183,11 +1202,13 @@ void World<T>::solve(T dt) {
     const bool soft = settings_.solver == SolverMode::soft_step;
     const int substeps = soft ? settings_.substeps : 1;
     const T h = dt / static_cast<T>(substeps);
-    detail::SolvePass<T> pass{T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
+    detail::SolvePass<T> pass{
+        T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
     const T max_rotation = settings_.max_rotation_per_step / static_cast<T>(substeps);
     for (int sub = 0; sub < substeps; ++sub) {
         for (std::size_t i = 1; i < solver_bodies_.size(); ++i)
-            if (integration_[i].dynamic) detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
+            if (integration_[i].dynamic)
+                detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
         if (settings_.warm_starting) {
             for (const detail::JointConstraint<T>& c : joint_rows_)
                 detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
@@ -1308,7 +1329,8 @@ void World<T>::update_sleep(T dt) {
         if (!c.touching) continue;
         for (const auto& [k, d] : {std::pair{c.a.index, c.b.index}, std::pair{c.b.index, c.a.index}}) {
             const Body<T>& kin = bodies_[k];
-            if (kin.type_ == BodyType::kinematic && (length_squared(kin.linear_velocity_) > T(0) || length_squared(kin.angular_velocity_) > T(0)))
+            if (kin.type_ == BodyType::kinematic &&
+                (length_squared(kin.linear_velocity_) > T(0) || length_squared(kin.angular_velocity_) > T(0)))
                 island_min[find(d)] = T(0);
         }
     }

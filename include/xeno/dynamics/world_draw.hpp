@@ -18,9 +18,9 @@ namespace xeno {
 template <class T>
 struct DrawOptions {
     bool bodies = true;
-    bool contacts = false;                    ///< contact points and normals
-    T normal_length = T(0.3);                 ///< metres
-    std::function<bool(BodyId)> hide;         ///< bodies for which this returns true are skipped
+    bool contacts = false;             ///< contact points and normals
+    T normal_length = T(0.3);          ///< metres
+    std::function<bool(BodyId)> hide;  ///< bodies for which this returns true are skipped
 };
 
 /// The colour of a body: user_data's low 24 bits as 0xRRGGBB when bit 24 is set, else by kind.
@@ -67,7 +67,11 @@ void draw_world(const World<T>& world, DebugDraw<T>& out, const DrawOptions<T>& 
     }
 }
 
-namespace f32 { using DrawOptions = xeno::DrawOptions<float>; }
-namespace f64 { using DrawOptions = xeno::DrawOptions<double>; }
+namespace f32 {
+using DrawOptions = xeno::DrawOptions<float>;
+}
+namespace f64 {
+using DrawOptions = xeno::DrawOptions<double>;
+}
 
 }  // namespace xeno

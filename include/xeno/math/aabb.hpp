@@ -32,8 +32,14 @@ struct Aabb {
         const Vec3<T> d = max - min;
         return T(2) * (d.x * d.y + d.y * d.z + d.z * d.x);
     }
-    constexpr void merge(const Vec3<T>& p) { min = xeno::min(min, p); max = xeno::max(max, p); }
-    constexpr void merge(const Aabb& b) { min = xeno::min(min, b.min); max = xeno::max(max, b.max); }
+    constexpr void merge(const Vec3<T>& p) {
+        min = xeno::min(min, p);
+        max = xeno::max(max, p);
+    }
+    constexpr void merge(const Aabb& b) {
+        min = xeno::min(min, b.min);
+        max = xeno::max(max, b.max);
+    }
     /// The box grown by margin on every side.
     constexpr Aabb expanded(T margin) const {
         const Vec3<T> m{margin, margin, margin};
@@ -43,16 +49,16 @@ struct Aabb {
         return p.x >= min.x && p.x <= max.x && p.y >= min.y && p.y <= max.y && p.z >= min.z && p.z <= max.z;
     }
     constexpr bool contains(const Aabb& b) const {
-        return b.min.x >= min.x && b.max.x <= max.x && b.min.y >= min.y && b.max.y <= max.y &&
-               b.min.z >= min.z && b.max.z <= max.z;
+        return b.min.x >= min.x && b.max.x <= max.x && b.min.y >= min.y && b.max.y <= max.y && b.min.z >= min.z &&
+               b.max.z <= max.z;
     }
 };
 
 /// True when the boxes share at least a point (touching counts).
 template <class T>
 constexpr bool overlaps(const Aabb<T>& a, const Aabb<T>& b) {
-    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
-           a.min.z <= b.max.z && b.min.z <= a.max.z;
+    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y && a.min.z <= b.max.z &&
+           b.min.z <= a.max.z;
 }
 
 /// The smallest box holding both.
@@ -61,7 +67,11 @@ constexpr Aabb<T> merged(const Aabb<T>& a, const Aabb<T>& b) {
     return {min(a.min, b.min), max(a.max, b.max)};
 }
 
-namespace f32 { using Aabb = xeno::Aabb<float>; }
-namespace f64 { using Aabb = xeno::Aabb<double>; }
+namespace f32 {
+using Aabb = xeno::Aabb<float>;
+}
+namespace f64 {
+using Aabb = xeno::Aabb<double>;
+}
 
 }  // namespace xeno

@@ -24,15 +24,12 @@ struct Mat3 {
     constexpr Mat3(const Vec3<T>& r0, const Vec3<T>& r1, const Vec3<T>& r2) : row{r0, r1, r2} {}
     /// Explicit conversion from the other precision.
     template <class U, class = std::enable_if_t<!std::is_same_v<T, U>>>
-    constexpr explicit Mat3(const Mat3<U>& m)
-        : row{Vec3<T>(m.row[0]), Vec3<T>(m.row[1]), Vec3<T>(m.row[2])} {}
+    constexpr explicit Mat3(const Mat3<U>& m) : row{Vec3<T>(m.row[0]), Vec3<T>(m.row[1]), Vec3<T>(m.row[2])} {}
 
     static constexpr Mat3 zero() { return {}; }
     static constexpr Mat3 identity() { return diagonal({T(1), T(1), T(1)}); }
     /// diag(d.x, d.y, d.z).
-    static constexpr Mat3 diagonal(const Vec3<T>& d) {
-        return {{d.x, T(0), T(0)}, {T(0), d.y, T(0)}, {T(0), T(0), d.z}};
-    }
+    static constexpr Mat3 diagonal(const Vec3<T>& d) { return {{d.x, T(0), T(0)}, {T(0), d.y, T(0)}, {T(0), T(0), d.z}}; }
     /// The matrix with the given columns.
     static constexpr Mat3 from_columns(const Vec3<T>& c0, const Vec3<T>& c1, const Vec3<T>& c2) {
         return {{c0.x, c1.x, c2.x}, {c0.y, c1.y, c2.y}, {c0.z, c1.z, c2.z}};
@@ -44,17 +41,41 @@ struct Mat3 {
     constexpr Vec3<T> diagonal_vector() const { return {row[0].x, row[1].y, row[2].z}; }
 };
 
-template <class T> constexpr Mat3<T> operator+(const Mat3<T>& a, const Mat3<T>& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-template <class T> constexpr Mat3<T> operator-(const Mat3<T>& a, const Mat3<T>& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-template <class T> constexpr Mat3<T> operator*(const Mat3<T>& a, T s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-template <class T> constexpr Mat3<T> operator*(T s, const Mat3<T>& a) { return a * s; }
-template <class T> constexpr bool operator==(const Mat3<T>& a, const Mat3<T>& b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
+template <class T>
+constexpr Mat3<T> operator+(const Mat3<T>& a, const Mat3<T>& b) {
+    return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+template <class T>
+constexpr Mat3<T> operator-(const Mat3<T>& a, const Mat3<T>& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+template <class T>
+constexpr Mat3<T> operator*(const Mat3<T>& a, T s) {
+    return {a[0] * s, a[1] * s, a[2] * s};
+}
+template <class T>
+constexpr Mat3<T> operator*(T s, const Mat3<T>& a) {
+    return a * s;
+}
+template <class T>
+constexpr bool operator==(const Mat3<T>& a, const Mat3<T>& b) {
+    return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+}
 
 /// M v: transforms the column vector v.
-template <class T> constexpr Vec3<T> operator*(const Mat3<T>& m, const Vec3<T>& v) { return {dot(m[0], v), dot(m[1], v), dot(m[2], v)}; }
-template <class T> constexpr Vec3<T> transform(const Mat3<T>& m, const Vec3<T>& v) { return m * v; }
+template <class T>
+constexpr Vec3<T> operator*(const Mat3<T>& m, const Vec3<T>& v) {
+    return {dot(m[0], v), dot(m[1], v), dot(m[2], v)};
+}
+template <class T>
+constexpr Vec3<T> transform(const Mat3<T>& m, const Vec3<T>& v) {
+    return m * v;
+}
 /// Mᵀ v without forming the transpose: the inverse transform when M is a rotation.
-template <class T> constexpr Vec3<T> transposed_transform(const Mat3<T>& m, const Vec3<T>& v) { return m[0] * v.x + m[1] * v.y + m[2] * v.z; }
+template <class T>
+constexpr Vec3<T> transposed_transform(const Mat3<T>& m, const Vec3<T>& v) {
+    return m[0] * v.x + m[1] * v.y + m[2] * v.z;
+}
 
 template <class T>
 constexpr Mat3<T> transpose(const Mat3<T>& m) {
@@ -72,7 +93,10 @@ constexpr T determinant(const Mat3<T>& m) {
     return triple(m[0], m[1], m[2]);
 }
 
-template <class T> constexpr T trace(const Mat3<T>& m) { return m[0].x + m[1].y + m[2].z; }
+template <class T>
+constexpr T trace(const Mat3<T>& m) {
+    return m[0].x + m[1].y + m[2].z;
+}
 
 /// The inverse, or nothing when |det| is below a relative threshold (a singular or nearly
 /// singular matrix is reported, never divided by zero). The matrix is scaled by its largest
@@ -111,7 +135,11 @@ bool is_finite(const Mat3<T>& m) {
     return is_finite(m[0]) && is_finite(m[1]) && is_finite(m[2]);
 }
 
-namespace f32 { using Mat3 = xeno::Mat3<float>; }
-namespace f64 { using Mat3 = xeno::Mat3<double>; }
+namespace f32 {
+using Mat3 = xeno::Mat3<float>;
+}
+namespace f64 {
+using Mat3 = xeno::Mat3<double>;
+}
 
 }  // namespace xeno

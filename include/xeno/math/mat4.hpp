@@ -38,9 +38,15 @@ struct Mat4 {
 };
 
 /// Point transform: linear · p + translation.
-template <class T> constexpr Vec3<T> transform_point(const Mat4<T>& m, const Vec3<T>& p) { return m.linear * p + m.translation; }
+template <class T>
+constexpr Vec3<T> transform_point(const Mat4<T>& m, const Vec3<T>& p) {
+    return m.linear * p + m.translation;
+}
 /// Direction transform: linear · d (translation ignored).
-template <class T> constexpr Vec3<T> transform_direction(const Mat4<T>& m, const Vec3<T>& d) { return m.linear * d; }
+template <class T>
+constexpr Vec3<T> transform_direction(const Mat4<T>& m, const Vec3<T>& d) {
+    return m.linear * d;
+}
 
 /// Product a b (applies b first).
 template <class T>
@@ -56,7 +62,11 @@ std::optional<Mat4<T>> try_inverse(const Mat4<T>& m) {
     return Mat4<T>{*inv, -(*inv * m.translation)};
 }
 
-namespace f32 { using Mat4 = xeno::Mat4<float>; }
-namespace f64 { using Mat4 = xeno::Mat4<double>; }
+namespace f32 {
+using Mat4 = xeno::Mat4<float>;
+}
+namespace f64 {
+using Mat4 = xeno::Mat4<double>;
+}
 
 }  // namespace xeno

@@ -45,33 +45,72 @@ struct Quat {
     /// The vector part (x, y, z).
     constexpr Vec3<T> vec() const { return {x, y, z}; }
     template <class U>
-    constexpr Quat<U> cast() const { return Quat<U>(*this); }
+    constexpr Quat<U> cast() const {
+        return Quat<U>(*this);
+    }
 };
 
-template <class T> constexpr Quat<T> operator+(const Quat<T>& a, const Quat<T>& b) { return {a.w + b.w, a.x + b.x, a.y + b.y, a.z + b.z}; }
-template <class T> constexpr Quat<T> operator-(const Quat<T>& a, const Quat<T>& b) { return {a.w - b.w, a.x - b.x, a.y - b.y, a.z - b.z}; }
-template <class T> constexpr Quat<T> operator-(const Quat<T>& a) { return {-a.w, -a.x, -a.y, -a.z}; }
-template <class T> constexpr Quat<T> operator*(const Quat<T>& a, T s) { return {a.w * s, a.x * s, a.y * s, a.z * s}; }
-template <class T> constexpr Quat<T> operator*(T s, const Quat<T>& a) { return a * s; }
-template <class T> constexpr bool operator==(const Quat<T>& a, const Quat<T>& b) { return a.w == b.w && a.x == b.x && a.y == b.y && a.z == b.z; }
-template <class T> constexpr bool operator!=(const Quat<T>& a, const Quat<T>& b) { return !(a == b); }
+template <class T>
+constexpr Quat<T> operator+(const Quat<T>& a, const Quat<T>& b) {
+    return {a.w + b.w, a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class T>
+constexpr Quat<T> operator-(const Quat<T>& a, const Quat<T>& b) {
+    return {a.w - b.w, a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class T>
+constexpr Quat<T> operator-(const Quat<T>& a) {
+    return {-a.w, -a.x, -a.y, -a.z};
+}
+template <class T>
+constexpr Quat<T> operator*(const Quat<T>& a, T s) {
+    return {a.w * s, a.x * s, a.y * s, a.z * s};
+}
+template <class T>
+constexpr Quat<T> operator*(T s, const Quat<T>& a) {
+    return a * s;
+}
+template <class T>
+constexpr bool operator==(const Quat<T>& a, const Quat<T>& b) {
+    return a.w == b.w && a.x == b.x && a.y == b.y && a.z == b.z;
+}
+template <class T>
+constexpr bool operator!=(const Quat<T>& a, const Quat<T>& b) {
+    return !(a == b);
+}
 
 /// Hamilton product: (a b) applies b first, then a.
 template <class T>
 constexpr Quat<T> operator*(const Quat<T>& a, const Quat<T>& b) {
-    return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
-            a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-            a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-            a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+    return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+            a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
 }
 
-template <class T> constexpr T dot(const Quat<T>& a, const Quat<T>& b) { return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z; }
-template <class T> constexpr T length_squared(const Quat<T>& q) { return dot(q, q); }
-template <class T> T length(const Quat<T>& q) { return std::sqrt(dot(q, q)); }
-template <class T> constexpr Quat<T> conjugate(const Quat<T>& q) { return {q.w, -q.x, -q.y, -q.z}; }
+template <class T>
+constexpr T dot(const Quat<T>& a, const Quat<T>& b) {
+    return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+constexpr T length_squared(const Quat<T>& q) {
+    return dot(q, q);
+}
+template <class T>
+T length(const Quat<T>& q) {
+    return std::sqrt(dot(q, q));
+}
+template <class T>
+constexpr Quat<T> conjugate(const Quat<T>& q) {
+    return {q.w, -q.x, -q.y, -q.z};
+}
 /// q⁻¹ = q* / |q|²; for a unit quaternion that is the conjugate. q must not be zero.
-template <class T> constexpr Quat<T> inverse(const Quat<T>& q) { return conjugate(q) * (T(1) / length_squared(q)); }
-template <class T> bool is_finite(const Quat<T>& q) { return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z); }
+template <class T>
+constexpr Quat<T> inverse(const Quat<T>& q) {
+    return conjugate(q) * (T(1) / length_squared(q));
+}
+template <class T>
+bool is_finite(const Quat<T>& q) {
+    return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+}
 
 /// q scaled to unit length; a zero (or non-finite) quaternion gives the identity. A quaternion
 /// whose squared length would under- or overflow (components of 1e-20 or 1e20 in float) is first
@@ -206,7 +245,13 @@ Quat<T> Quat<T>::from_to(const Vec3<T>& from, const Vec3<T>& to) {
     return normalized(Quat{T(1) + c, axis.x, axis.y, axis.z});
 }
 
-namespace f32 { using Quat = xeno::Quat<float>; using EulerAngles = xeno::EulerAngles<float>; }
-namespace f64 { using Quat = xeno::Quat<double>; using EulerAngles = xeno::EulerAngles<double>; }
+namespace f32 {
+using Quat = xeno::Quat<float>;
+using EulerAngles = xeno::EulerAngles<float>;
+}  // namespace f32
+namespace f64 {
+using Quat = xeno::Quat<double>;
+using EulerAngles = xeno::EulerAngles<double>;
+}  // namespace f64
 
 }  // namespace xeno

@@ -15,8 +15,7 @@ namespace xeno {
 /// Constants for the scalar type T (float or double).
 template <class T>
 struct ScalarTraits {
-    static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>,
-                  "xeno is templated on float or double only");
+    static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>, "xeno is templated on float or double only");
 
     /// Machine epsilon: the gap between 1 and the next representable value.
     static constexpr T epsilon = std::numeric_limits<T>::epsilon();
@@ -50,8 +49,7 @@ constexpr T clamp(T x, T low, T high) {
 
 /// True when a and b differ by at most max(absolute, relative * max(|a|, |b|)).
 template <class T>
-bool approx_equal(T a, T b, T relative = ScalarTraits<T>::relative_tolerance,
-                  T absolute = ScalarTraits<T>::relative_tolerance) {
+bool approx_equal(T a, T b, T relative = ScalarTraits<T>::relative_tolerance, T absolute = ScalarTraits<T>::relative_tolerance) {
     const T diff = std::abs(a - b);
     const T scale = std::abs(a) > std::abs(b) ? std::abs(a) : std::abs(b);
     return diff <= absolute || diff <= relative * scale;
@@ -70,7 +68,11 @@ constexpr T degrees(T radians_value) {
 }
 
 /// The scalar of each precision's names (`xs::Real(0.2) * i` reads the same in f32 and f64).
-namespace f32 { using Real = float; }
-namespace f64 { using Real = double; }
+namespace f32 {
+using Real = float;
+}
+namespace f64 {
+using Real = double;
+}
 
 }  // namespace xeno

@@ -30,7 +30,9 @@ struct Transform {
     constexpr Vec3<T> inverse_apply_direction(const Vec3<T>& d) const { return inverse_rotate(orientation, d); }
 
     template <class U>
-    constexpr Transform<U> cast() const { return {position.template cast<U>(), orientation.template cast<U>()}; }
+    constexpr Transform<U> cast() const {
+        return {position.template cast<U>(), orientation.template cast<U>()};
+    }
 };
 
 /// The transform that undoes t.
@@ -52,7 +54,11 @@ bool is_finite(const Transform<T>& t) {
     return is_finite(t.position) && is_finite(t.orientation) && t.orientation != Quat<T>{T(0), T(0), T(0), T(0)};
 }
 
-namespace f32 { using Transform = xeno::Transform<float>; }
-namespace f64 { using Transform = xeno::Transform<double>; }
+namespace f32 {
+using Transform = xeno::Transform<float>;
+}
+namespace f64 {
+using Transform = xeno::Transform<double>;
+}
 
 }  // namespace xeno

@@ -25,8 +25,7 @@ struct Vec3 {
     constexpr Vec3(T x_, T y_, T z_) : x(x_), y(y_), z(z_) {}
     /// Explicit conversion from the other precision.
     template <class U, class = std::enable_if_t<!std::is_same_v<T, U>>>
-    constexpr explicit Vec3(const Vec3<U>& v)
-        : x(static_cast<T>(v.x)), y(static_cast<T>(v.y)), z(static_cast<T>(v.z)) {}
+    constexpr explicit Vec3(const Vec3<U>& v) : x(static_cast<T>(v.x)), y(static_cast<T>(v.y)), z(static_cast<T>(v.z)) {}
 
     static constexpr Vec3 zero() { return {T(0), T(0), T(0)}; }
     static constexpr Vec3 one() { return {T(1), T(1), T(1)}; }
@@ -46,50 +45,133 @@ struct Vec3 {
         return {static_cast<U>(x), static_cast<U>(y), static_cast<U>(z)};
     }
 
-    constexpr Vec3& operator+=(const Vec3& b) { x += b.x; y += b.y; z += b.z; return *this; }
-    constexpr Vec3& operator-=(const Vec3& b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
-    constexpr Vec3& operator*=(T s) { x *= s; y *= s; z *= s; return *this; }
-    constexpr Vec3& operator/=(T s) { x /= s; y /= s; z /= s; return *this; }
+    constexpr Vec3& operator+=(const Vec3& b) {
+        x += b.x;
+        y += b.y;
+        z += b.z;
+        return *this;
+    }
+    constexpr Vec3& operator-=(const Vec3& b) {
+        x -= b.x;
+        y -= b.y;
+        z -= b.z;
+        return *this;
+    }
+    constexpr Vec3& operator*=(T s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
+    constexpr Vec3& operator/=(T s) {
+        x /= s;
+        y /= s;
+        z /= s;
+        return *this;
+    }
 
     /// Scales to unit length in place; a zero vector is left unchanged (see normalized_or).
     void normalize();
 };
 
-template <class T> constexpr Vec3<T> operator+(const Vec3<T>& a, const Vec3<T>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-template <class T> constexpr Vec3<T> operator-(const Vec3<T>& a, const Vec3<T>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-template <class T> constexpr Vec3<T> operator-(const Vec3<T>& a) { return {-a.x, -a.y, -a.z}; }
-template <class T> constexpr Vec3<T> operator*(const Vec3<T>& a, T s) { return {a.x * s, a.y * s, a.z * s}; }
-template <class T> constexpr Vec3<T> operator*(T s, const Vec3<T>& a) { return {a.x * s, a.y * s, a.z * s}; }
-template <class T> constexpr Vec3<T> operator/(const Vec3<T>& a, T s) { return {a.x / s, a.y / s, a.z / s}; }
-template <class T> constexpr bool operator==(const Vec3<T>& a, const Vec3<T>& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
-template <class T> constexpr bool operator!=(const Vec3<T>& a, const Vec3<T>& b) { return !(a == b); }
+template <class T>
+constexpr Vec3<T> operator+(const Vec3<T>& a, const Vec3<T>& b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class T>
+constexpr Vec3<T> operator-(const Vec3<T>& a, const Vec3<T>& b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class T>
+constexpr Vec3<T> operator-(const Vec3<T>& a) {
+    return {-a.x, -a.y, -a.z};
+}
+template <class T>
+constexpr Vec3<T> operator*(const Vec3<T>& a, T s) {
+    return {a.x * s, a.y * s, a.z * s};
+}
+template <class T>
+constexpr Vec3<T> operator*(T s, const Vec3<T>& a) {
+    return {a.x * s, a.y * s, a.z * s};
+}
+template <class T>
+constexpr Vec3<T> operator/(const Vec3<T>& a, T s) {
+    return {a.x / s, a.y / s, a.z / s};
+}
+template <class T>
+constexpr bool operator==(const Vec3<T>& a, const Vec3<T>& b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+template <class T>
+constexpr bool operator!=(const Vec3<T>& a, const Vec3<T>& b) {
+    return !(a == b);
+}
 
 /// Component-wise product.
-template <class T> constexpr Vec3<T> hadamard(const Vec3<T>& a, const Vec3<T>& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-template <class T> constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+template <class T>
+constexpr Vec3<T> hadamard(const Vec3<T>& a, const Vec3<T>& b) {
+    return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+template <class T>
+constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 /// Right-handed cross product.
-template <class T> constexpr Vec3<T> cross(const Vec3<T>& a, const Vec3<T>& b) {
+template <class T>
+constexpr Vec3<T> cross(const Vec3<T>& a, const Vec3<T>& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 /// a · (b × c): six times the signed volume of the tetrahedron (0, a, b, c).
-template <class T> constexpr T triple(const Vec3<T>& a, const Vec3<T>& b, const Vec3<T>& c) { return dot(a, cross(b, c)); }
-template <class T> constexpr T length_squared(const Vec3<T>& a) { return dot(a, a); }
-template <class T> T length(const Vec3<T>& a) { return std::sqrt(dot(a, a)); }
-template <class T> T distance(const Vec3<T>& a, const Vec3<T>& b) { return length(a - b); }
-template <class T> constexpr Vec3<T> min(const Vec3<T>& a, const Vec3<T>& b) {
+template <class T>
+constexpr T triple(const Vec3<T>& a, const Vec3<T>& b, const Vec3<T>& c) {
+    return dot(a, cross(b, c));
+}
+template <class T>
+constexpr T length_squared(const Vec3<T>& a) {
+    return dot(a, a);
+}
+template <class T>
+T length(const Vec3<T>& a) {
+    return std::sqrt(dot(a, a));
+}
+template <class T>
+T distance(const Vec3<T>& a, const Vec3<T>& b) {
+    return length(a - b);
+}
+template <class T>
+constexpr Vec3<T> min(const Vec3<T>& a, const Vec3<T>& b) {
     return {a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z};
 }
-template <class T> constexpr Vec3<T> max(const Vec3<T>& a, const Vec3<T>& b) {
+template <class T>
+constexpr Vec3<T> max(const Vec3<T>& a, const Vec3<T>& b) {
     return {a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z};
 }
-template <class T> Vec3<T> abs(const Vec3<T>& a) { return {std::abs(a.x), std::abs(a.y), std::abs(a.z)}; }
-template <class T> constexpr T min_component(const Vec3<T>& a) { return a.x < a.y ? (a.x < a.z ? a.x : a.z) : (a.y < a.z ? a.y : a.z); }
-template <class T> constexpr T max_component(const Vec3<T>& a) { return a.x > a.y ? (a.x > a.z ? a.x : a.z) : (a.y > a.z ? a.y : a.z); }
+template <class T>
+Vec3<T> abs(const Vec3<T>& a) {
+    return {std::abs(a.x), std::abs(a.y), std::abs(a.z)};
+}
+template <class T>
+constexpr T min_component(const Vec3<T>& a) {
+    return a.x < a.y ? (a.x < a.z ? a.x : a.z) : (a.y < a.z ? a.y : a.z);
+}
+template <class T>
+constexpr T max_component(const Vec3<T>& a) {
+    return a.x > a.y ? (a.x > a.z ? a.x : a.z) : (a.y > a.z ? a.y : a.z);
+}
 /// Index (0, 1, 2) of the largest component.
-template <class T> constexpr int max_axis(const Vec3<T>& a) { return a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2); }
-template <class T> constexpr Vec3<T> lerp(const Vec3<T>& a, const Vec3<T>& b, T t) { return a + (b - a) * t; }
+template <class T>
+constexpr int max_axis(const Vec3<T>& a) {
+    return a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
+}
+template <class T>
+constexpr Vec3<T> lerp(const Vec3<T>& a, const Vec3<T>& b, T t) {
+    return a + (b - a) * t;
+}
 /// True when every component is finite (no NaN, no infinity).
-template <class T> bool is_finite(const Vec3<T>& a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+template <class T>
+bool is_finite(const Vec3<T>& a) {
+    return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
 
 /// The unit vector along a; a must not be zero (for that case use normalized_or).
 template <class T>
@@ -128,7 +210,11 @@ Vec3<T> any_perpendicular(const Vec3<T>& n) {
     return {T(1) + sign * n.x * n.x * a, sign * b, -sign * n.x};
 }
 
-namespace f32 { using Vec3 = xeno::Vec3<float>; }
-namespace f64 { using Vec3 = xeno::Vec3<double>; }
+namespace f32 {
+using Vec3 = xeno::Vec3<float>;
+}
+namespace f64 {
+using Vec3 = xeno::Vec3<double>;
+}
 
 }  // namespace xeno

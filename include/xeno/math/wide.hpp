@@ -68,12 +68,24 @@ struct Wide {
         for (int i = 0; i < W; ++i) r.lane[i] = f(a.lane[i], b.lane[i]);
         return r;
     }
-    friend Wide operator+(const Wide& a, const Wide& b) { return map(a, b, [](T x, T y) { return x + y; }); }
-    friend Wide operator-(const Wide& a, const Wide& b) { return map(a, b, [](T x, T y) { return x - y; }); }
-    friend Wide operator*(const Wide& a, const Wide& b) { return map(a, b, [](T x, T y) { return x * y; }); }
-    friend Wide operator/(const Wide& a, const Wide& b) { return map(a, b, [](T x, T y) { return x / y; }); }
-    friend Wide max(const Wide& a, const Wide& b) { return map(a, b, [](T x, T y) { return x > y ? x : y; }); }
-    friend Wide min(const Wide& a, const Wide& b) { return map(a, b, [](T x, T y) { return x < y ? x : y; }); }
+    friend Wide operator+(const Wide& a, const Wide& b) {
+        return map(a, b, [](T x, T y) { return x + y; });
+    }
+    friend Wide operator-(const Wide& a, const Wide& b) {
+        return map(a, b, [](T x, T y) { return x - y; });
+    }
+    friend Wide operator*(const Wide& a, const Wide& b) {
+        return map(a, b, [](T x, T y) { return x * y; });
+    }
+    friend Wide operator/(const Wide& a, const Wide& b) {
+        return map(a, b, [](T x, T y) { return x / y; });
+    }
+    friend Wide max(const Wide& a, const Wide& b) {
+        return map(a, b, [](T x, T y) { return x > y ? x : y; });
+    }
+    friend Wide min(const Wide& a, const Wide& b) {
+        return map(a, b, [](T x, T y) { return x < y ? x : y; });
+    }
     friend Wide sqrt(const Wide& a) {
         Wide r;
         for (int i = 0; i < W; ++i) r.lane[i] = std::sqrt(a.lane[i]);
@@ -230,7 +242,8 @@ XENO_WIDE_INLINE void store_transposed(const Wide<T, W>* in, int rows, T* const 
 XENO_WIDE_INLINE void load_transposed(const float* const (&src)[4], int rows, Wide<float, 4>* out) {
     int r = 0;
     for (; r + 4 <= rows; r += 4) {
-        __m128 a = _mm_loadu_ps(src[0] + r), b = _mm_loadu_ps(src[1] + r), c = _mm_loadu_ps(src[2] + r), d = _mm_loadu_ps(src[3] + r);
+        __m128 a = _mm_loadu_ps(src[0] + r), b = _mm_loadu_ps(src[1] + r), c = _mm_loadu_ps(src[2] + r),
+               d = _mm_loadu_ps(src[3] + r);
         _MM_TRANSPOSE4_PS(a, b, c, d);
         out[r].x = a, out[r + 1].x = b, out[r + 2].x = c, out[r + 3].x = d;
     }

@@ -93,7 +93,11 @@ SupportFace<T> Box<T>::support_face(const Vec3<T>& d) const {
     return face;
 }
 
-namespace f32 { using Box = xeno::Box<float>; }
-namespace f64 { using Box = xeno::Box<double>; }
+namespace f32 {
+using Box = xeno::Box<float>;
+}
+namespace f64 {
+using Box = xeno::Box<double>;
+}
 
 }  // namespace xeno

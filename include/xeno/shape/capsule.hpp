@@ -73,8 +73,8 @@ public:
         const T hemisphere = T(2) / T(3) * pi * r2 * r;
         const T axial = cylinder * r2 / T(2) + T(2) * hemisphere * T(0.4) * r2;
         const T lever = h + T(3) / T(8) * r;
-        const T transverse = cylinder * (T(3) * r2 + T(4) * h * h) / T(12) +
-                             T(2) * hemisphere * (T(83) / T(320) * r2 + lever * lever);
+        const T transverse =
+            cylinder * (T(3) * r2 + T(4) * h * h) / T(12) + T(2) * hemisphere * (T(83) / T(320) * r2 + lever * lever);
         return {volume(), Vec3<T>::zero(), Mat3<T>::diagonal({transverse, axial, transverse})};
     }
 
@@ -83,7 +83,11 @@ private:
     T half_height_;  ///< metres, half the segment length
 };
 
-namespace f32 { using Capsule = xeno::Capsule<float>; }
-namespace f64 { using Capsule = xeno::Capsule<double>; }
+namespace f32 {
+using Capsule = xeno::Capsule<float>;
+}
+namespace f64 {
+using Capsule = xeno::Capsule<double>;
+}
 
 }  // namespace xeno

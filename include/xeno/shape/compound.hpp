@@ -90,10 +90,17 @@ Compound<T>::Compound(std::vector<CompoundChild<T>> children) : children_(std::m
     }
     unit_mass_ = {mass, Vec3<T>::zero(), inertia};
     if (!(is_finite(shift_) && is_finite(inertia) && std::isfinite(radius_) && is_finite(bounds_.min) && is_finite(bounds_.max)))
-        detail::report_invalid(where, "children too far apart or too large for this precision; bounding radius (m)", static_cast<double>(radius_));
+        detail::report_invalid(where, "children too far apart or too large for this precision; bounding radius (m)",
+                               static_cast<double>(radius_));
 }
 
-namespace f32 { using Compound = xeno::Compound<float>; using CompoundChild = xeno::CompoundChild<float>; }
-namespace f64 { using Compound = xeno::Compound<double>; using CompoundChild = xeno::CompoundChild<double>; }
+namespace f32 {
+using Compound = xeno::Compound<float>;
+using CompoundChild = xeno::CompoundChild<float>;
+}  // namespace f32
+namespace f64 {
+using Compound = xeno::Compound<double>;
+using CompoundChild = xeno::CompoundChild<double>;
+}  // namespace f64
 
 }  // namespace xeno

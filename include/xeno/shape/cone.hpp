@@ -106,7 +106,11 @@ SupportFace<T> Cone<T>::support_face(const Vec3<T>& d) const {
     return face;
 }
 
-namespace f32 { using Cone = xeno::Cone<float>; }
-namespace f64 { using Cone = xeno::Cone<double>; }
+namespace f32 {
+using Cone = xeno::Cone<float>;
+}
+namespace f64 {
+using Cone = xeno::Cone<double>;
+}
 
 }  // namespace xeno

@@ -111,11 +111,11 @@ private:
         std::uint32_t edge = none;  // any half-edge of the face
         std::uint32_t count = 0;    // number of vertices
         Vec3<W> normal{}, centroid{};
-        W offset = W(0);            // normal · centroid: the mean plane, for merging
-        W outer = W(0);             // max of normal · vertex: the outer plane, for points
+        W offset = W(0);  // normal · centroid: the mean plane, for merging
+        W outer = W(0);   // max of normal · vertex: the outer plane, for points
         W area = W(0);
         bool alive = true, nonconvex = false, queued = false;
-        bool degenerate = false;    // no reliable plane (narrower than ε): to be merged away
+        bool degenerate = false;             // no reliable plane (narrower than ε): to be merged away
         std::vector<std::uint32_t> outside;  // conflict list: points more than ε above the face
     };
 
@@ -127,7 +127,10 @@ private:
     W mean_distance(std::uint32_t f, const Vec3<W>& p) const { return dot(faces_[f].normal, p) - faces_[f].offset; }
 
     std::uint32_t add_triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
-    void link(std::uint32_t e, std::uint32_t f) { edges_[e].twin = f; edges_[f].twin = e; }
+    void link(std::uint32_t e, std::uint32_t f) {
+        edges_[e].twin = f;
+        edges_[f].twin = e;
+    }
     void update_plane(std::uint32_t f);
     std::uint32_t longest_edge(std::uint32_t f) const;
     bool merge_degenerate_faces();
@@ -151,12 +154,12 @@ private:
     std::deque<Face> faces_;
     std::vector<std::uint32_t> pending_;  // faces that received conflict points, in order
     std::vector<std::uint32_t> horizon_, unclaimed_, new_faces_, discarded_, scratch_, degenerate_;
-    std::vector<std::uint32_t> stamp_;    // per point: last add_point that saw it on the horizon
+    std::vector<std::uint32_t> stamp_;  // per point: last add_point that saw it on the horizon
     struct HorizonFrame {
         std::uint32_t edge;       // next edge of this face to look across
         std::uint32_t remaining;  // edges of this face still to look across
     };
-    std::vector<HorizonFrame> stack_;     // find_horizon's depth-first walk
+    std::vector<HorizonFrame> stack_;  // find_horizon's depth-first walk
     std::uint32_t step_ = 0;
     bool failed_ = false;
 };
@@ -185,7 +188,10 @@ void QuickHullBuilder<W>::update_plane(std::uint32_t f) {
     do {
         sum += points_[edges_[e].origin];
         e = edges_[e].next;
-        if (++count > edges_.size()) { failed_ = true; return; }
+        if (++count > edges_.size()) {
+            failed_ = true;
+            return;
+        }
     } while (e != face.edge);
     face.count = count;
     face.centroid = sum / static_cast<W>(count);
@@ -198,8 +204,9 @@ void QuickHullBuilder<W>::update_plane(std::uint32_t f) {
     face.area = length(newell) / W(2);
     // Narrower than ε (area over longest edge): the eye was in line with a horizon edge, or a
     // merge left a sliver. Its plane is noise; merge_degenerate_faces() removes it.
-    face.degenerate = !normal || !(face.area <= ScalarTraits<W>::max) ||
-                      !(W(2) * face.area > tolerance_ * length(points_[edges_[longest_edge(f)].origin] - points_[head(longest_edge(f))]));
+    face.degenerate =
+        !normal || !(face.area <= ScalarTraits<W>::max) ||
+        !(W(2) * face.area > tolerance_ * length(points_[edges_[longest_edge(f)].origin] - points_[head(longest_edge(f))]));
     if (face.degenerate) {
         degenerate_.push_back(f);
         if (!normal) return;
@@ -315,8 +322,7 @@ void QuickHullBuilder<W>::remove_face(std::uint32_t f) {
 }
 
 template <class W>
-bool QuickHullBuilder<W>::build(const std::vector<std::uint32_t>& candidates,
-                                const std::array<std::uint32_t, 4>& simplex) {
+bool QuickHullBuilder<W>::build(const std::vector<std::uint32_t>& candidates, const std::array<std::uint32_t, 4>& simplex) {
     edges_.clear();
     faces_.clear();
     pending_.clear();
@@ -389,8 +395,7 @@ bool QuickHullBuilder<W>::add_point(std::uint32_t eye, std::uint32_t eye_face) {
         link(faces_[f].edge + 1, outer);
         new_faces_.push_back(f);
     }
-    for (std::size_t i = 0; i < n; ++i)
-        link(faces_[new_faces_[i]].edge + 2, faces_[new_faces_[(i + 1) % n]].edge);
+    for (std::size_t i = 0; i < n; ++i) link(faces_[new_faces_[i]].edge + 2, faces_[new_faces_[(i + 1) % n]].edge);
     if (failed_) return false;
 
     // 5. Merge slivers away, then coplanar or concave neighbours: judged from the larger face,
@@ -489,22 +494,31 @@ void QuickHullBuilder<W>::merge_faces(std::uint32_t e) {
     discarded_.clear();
     discarded_.push_back(g);
     faces_[g].alive = false;
-    std::uint32_t before = edges_[e].prev, after = edges_[e].next;                  // in f
+    std::uint32_t before = edges_[e].prev, after = edges_[e].next;                    // in f
     std::uint32_t g_before = edges_[opposite].prev, g_after = edges_[opposite].next;  // in g
     const std::size_t cap = faces_[f].count + faces_[g].count;
     for (std::size_t k = 0; twin_face(before) == g; ++k) {
-        if (k > cap) { failed_ = true; return; }
+        if (k > cap) {
+            failed_ = true;
+            return;
+        }
         before = edges_[before].prev;
         g_after = edges_[g_after].next;
     }
     for (std::size_t k = 0; twin_face(after) == g; ++k) {
-        if (k > cap) { failed_ = true; return; }
+        if (k > cap) {
+            failed_ = true;
+            return;
+        }
         g_before = edges_[g_before].prev;
         after = edges_[after].next;
     }
     std::size_t k = 0;
     for (std::uint32_t h = g_after; h != edges_[g_before].next; h = edges_[h].next) {
-        if (++k > cap) { failed_ = true; return; }
+        if (++k > cap) {
+            failed_ = true;
+            return;
+        }
         edges_[h].face = f;
     }
     faces_[f].edge = after;
@@ -619,8 +633,10 @@ HullSimplex<W> hull_simplex(const std::vector<Vec3<W>>& points, const std::vecto
     extreme.fill(candidates[0]);
     for (std::uint32_t i : candidates)
         for (int axis = 0; axis < 3; ++axis) {
-            if (points[i][axis] < points[extreme[static_cast<std::size_t>(2 * axis)]][axis]) extreme[static_cast<std::size_t>(2 * axis)] = i;
-            if (points[i][axis] > points[extreme[static_cast<std::size_t>(2 * axis + 1)]][axis]) extreme[static_cast<std::size_t>(2 * axis + 1)] = i;
+            if (points[i][axis] < points[extreme[static_cast<std::size_t>(2 * axis)]][axis])
+                extreme[static_cast<std::size_t>(2 * axis)] = i;
+            if (points[i][axis] > points[extreme[static_cast<std::size_t>(2 * axis + 1)]][axis])
+                extreme[static_cast<std::size_t>(2 * axis + 1)] = i;
         }
     W best = W(-1);
     for (std::uint32_t i : extreme)
@@ -714,8 +730,7 @@ HullCheck<W> check_hull_faces(const std::vector<Vec3<W>>& v, const std::vector<s
             const Vec3<W> p = v[face[k]] - reference, q = v[face[(k + 1) % face.size()]] - reference;
             newell += cross(p, q);
             longest_edge = std::max(longest_edge, length(q - p));
-            if (k > 0 && k + 1 < face.size())
-                out.volume += triple(v[face[0]] - reference, p, q) / W(6);
+            if (k > 0 && k + 1 < face.size()) out.volume += triple(v[face[0]] - reference, p, q) / W(6);
         }
         out.area[f] = length(newell) / W(2);
         bool bad = !(length(newell) > W(1.05) * tolerance * longest_edge);  // as ConvexPolyhedron: width
@@ -746,8 +761,7 @@ W distance_to_triangle(const Vec3<W>& p, const Vec3<W>& a, const Vec3<W>& b, con
     const W vb = d5 * d2 - d1 * d6;
     if (vb <= W(0) && d2 >= W(0) && d6 <= W(0)) return length(ap - ac * (d2 / (d2 - d6)));
     const W va = d3 * d6 - d5 * d4;
-    if (va <= W(0) && d4 - d3 >= W(0) && d5 - d6 >= W(0))
-        return length(bp - (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    if (va <= W(0) && d4 - d3 >= W(0) && d5 - d6 >= W(0)) return length(bp - (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
     const W denominator = va + vb + vc;
     if (!(std::abs(denominator) > W(0))) return length(ap);  // degenerate triangle: a vertex bounds it
     return length(ap - ab * (vb / denominator) - ac * (vc / denominator));
@@ -810,17 +824,18 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
     // 1. Input at the door.
     const std::size_t n = points.size();
     if (n < 4) detail::report_invalid(where, "needs at least 4 points, point count", static_cast<double>(n));
-    if (n >= std::size_t(0xffffffffu)) detail::report_invalid(where, "needs fewer than 2^32 - 1 points, point count", static_cast<double>(n));
+    if (n >= std::size_t(0xffffffffu))
+        detail::report_invalid(where, "needs fewer than 2^32 - 1 points, point count", static_cast<double>(n));
     Aabb<T> bounds;
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3<T>& p = points[i];
-        if (!is_finite(p))
-            detail::require_finite_xyz(p, where, ("point " + std::to_string(i)).c_str());
+        if (!is_finite(p)) detail::require_finite_xyz(p, where, ("point " + std::to_string(i)).c_str());
         bounds.merge(p);
     }
     const T largest = std::max(max_component(abs(bounds.min)), max_component(abs(bounds.max)));
     if (largest > std::sqrt(ScalarTraits<T>::max) / T(64))
-        detail::report_invalid(where, "has coordinates too large to square in this precision; largest |coordinate| (m)", static_cast<double>(largest));
+        detail::report_invalid(where, "has coordinates too large to square in this precision; largest |coordinate| (m)",
+                               static_cast<double>(largest));
 
     // 2. Centre on the bounding box (ConvexPolyhedron's Newell sums lose a face's normal to
     // round-off when the coordinates dwarf the cloud) and measure the cloud.
@@ -835,7 +850,7 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
     if (!(diagonal > rounding) || !(diagonal > W(std::sqrt(std::numeric_limits<T>::min()))))
         detail::report_invalid(where, "points all coincide; bounding-box diagonal (m)", diagonal);
     const W tolerance = W(ScalarTraits<T>::geometric_tolerance) * diagonal;  // ε, a face's thickness
-    const W flat = W(64) * tolerance;                                         // ConvexPolyhedron's tolerance
+    const W flat = W(64) * tolerance;                                        // ConvexPolyhedron's tolerance
 
     // 3. The starting tetrahedron; a cloud that has none is collinear or coplanar.
     std::vector<std::uint32_t> candidates(n);
@@ -863,7 +878,8 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
             if (built) faces = builder.face_loops();
         }
         if (!built)
-            detail::report_invalid(where, "could not build a consistent hull (round-off defeated every tolerance); point count", static_cast<double>(n));
+            detail::report_invalid(where, "could not build a consistent hull (round-off defeated every tolerance); point count",
+                                   static_cast<double>(n));
         detail::remove_straight_edge_vertices(faces, n);
 
         const detail::HullCheck<W> check = detail::check_hull_faces<T>(rounded, faces);
@@ -871,7 +887,8 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
             detail::report_invalid(where, "points are collinear or coplanar within tolerance; hull volume (m^3)", check.volume);
         if (check.all_faces_good) break;
         if (round == max_rounds)
-            detail::report_invalid(where, "could not reduce the hull to faces ConvexPolyhedron can represent; point count", static_cast<double>(n));
+            detail::report_invalid(where, "could not reduce the hull to faces ConvexPolyhedron can represent; point count",
+                                   static_cast<double>(n));
 
         const std::vector<bool> drop = detail::vertices_to_drop(rounded, faces, check.area, check.bad_face);
         std::vector<bool> on_hull(n, false);
@@ -881,10 +898,12 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
         for (std::uint32_t i = 0; i < n; ++i)
             if (on_hull[i] && !drop[i]) candidates.push_back(i);
         if (candidates.size() < 4)
-            detail::report_invalid(where, "points are coplanar within tolerance; usable vertex count", static_cast<double>(candidates.size()));
+            detail::report_invalid(where, "points are coplanar within tolerance; usable vertex count",
+                                   static_cast<double>(candidates.size()));
         simplex = detail::hull_simplex(q, candidates);
         if (!(simplex.line_distance > flat && simplex.plane_distance > flat))
-            detail::report_invalid(where, "points are coplanar within tolerance; largest distance from their plane (m)", simplex.plane_distance);
+            detail::report_invalid(where, "points are coplanar within tolerance; largest distance from their plane (m)",
+                                   simplex.plane_distance);
     }
 
     // 5. The polyhedron, on compact vertex indices, then re-centred on its centroid.
@@ -903,8 +922,12 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
     return ConvexHull<T>{std::move(centred.first), centre + centred.second};
 }
 
-namespace f32 { using ConvexHull = xeno::ConvexHull<float>; }
-namespace f64 { using ConvexHull = xeno::ConvexHull<double>; }
+namespace f32 {
+using ConvexHull = xeno::ConvexHull<float>;
+}
+namespace f64 {
+using ConvexHull = xeno::ConvexHull<double>;
+}
 
 #ifdef XENO_COMPILED_LIB
 // Compiled mode (compiled.hpp): float and double are compiled once, in src/xeno_compiled.cpp.

@@ -247,8 +247,7 @@ private:
 };
 
 template <class T>
-ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
-                                      const std::vector<std::vector<std::uint32_t>>& faces)
+ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices, const std::vector<std::vector<std::uint32_t>>& faces)
     : vertices_(std::move(vertices)) {
     const char* where = "ConvexPolyhedron";
     const std::size_t n = vertices_.size();
@@ -256,8 +255,7 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
     if (faces.size() < 4) detail::report_invalid(where, "needs at least 4 faces, face count", static_cast<double>(faces.size()));
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3<T>& v = vertices_[i];
-        if (!is_finite(v))
-            detail::require_finite_xyz(v, where, ("vertex " + std::to_string(i)).c_str());
+        if (!is_finite(v)) detail::require_finite_xyz(v, where, ("vertex " + std::to_string(i)).c_str());
         bounds_.merge(v);
         radius_ = std::max(radius_, length(v));
     }
@@ -286,11 +284,15 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const std::vector<std::uint32_t>& face = faces[f];
         const std::string face_name = "face " + std::to_string(f);
-        if (face.size() < 3) detail::report_invalid(where, (face_name + " needs 3 or more vertices, count").c_str(), static_cast<double>(face.size()));
+        if (face.size() < 3)
+            detail::report_invalid(where, (face_name + " needs 3 or more vertices, count").c_str(),
+                                   static_cast<double>(face.size()));
         // Every index checked before any is used: each edge reads the next vertex too (an
         // out-of-range last index was read before it was checked; found by AddressSanitizer).
         for (std::uint32_t index : face)
-            if (index >= n) detail::report_invalid(where, (face_name + " has a vertex index out of range").c_str(), static_cast<double>(index));
+            if (index >= n)
+                detail::report_invalid(where, (face_name + " has a vertex index out of range").c_str(),
+                                       static_cast<double>(index));
         Vec3<T> newell = Vec3<T>::zero(), centre = Vec3<T>::zero();
         T longest_edge = T(0);
         for (std::size_t k = 0; k < face.size(); ++k) {
@@ -308,11 +310,13 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
         if (!normal || !(length(newell) > tolerance * longest_edge))
             detail::report_invalid(where, (face_name + " is degenerate (zero area or a sliver); its width (m)").c_str(),
                                    static_cast<double>(longest_edge > T(0) ? length(newell) / longest_edge : T(0)));
-        Face out{static_cast<std::uint32_t>(face_indices_.size()), static_cast<std::uint32_t>(face.size()), *normal, dot(*normal, centre)};
+        Face out{static_cast<std::uint32_t>(face_indices_.size()), static_cast<std::uint32_t>(face.size()), *normal,
+                 dot(*normal, centre)};
         for (std::uint32_t index : face) {
             const T off_plane = dot(*normal, vertices_[index]) - out.offset;
             if (std::abs(off_plane) > tolerance)
-                detail::report_invalid(where, (face_name + " is not planar; a vertex is off its plane by (m)").c_str(), static_cast<double>(off_plane));
+                detail::report_invalid(where, (face_name + " is not planar; a vertex is off its plane by (m)").c_str(),
+                                       static_cast<double>(off_plane));
             face_indices_.push_back(index);
         }
         faces_.push_back(out);
@@ -322,7 +326,9 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
     std::sort(directed_edges.begin(), directed_edges.end());
     for (std::size_t i = 0; i + 1 < directed_edges.size(); ++i)
         if (directed_edges[i] == directed_edges[i + 1])
-            detail::report_invalid(where, "is not a closed 2-manifold (an edge is used twice in one direction; check face winding), vertex", static_cast<double>(directed_edges[i].first));
+            detail::report_invalid(
+                where, "is not a closed 2-manifold (an edge is used twice in one direction; check face winding), vertex",
+                static_cast<double>(directed_edges[i].first));
     // Each edge's reverse is there when the reversed edges, sorted, are the same list (one sort
     // instead of a binary search per edge); else the search finds the edge to report.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> reversed;
@@ -332,7 +338,8 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
     const bool closed = reversed == directed_edges;
     for (const auto& e : directed_edges) {
         if (!closed && !std::binary_search(directed_edges.begin(), directed_edges.end(), std::make_pair(e.second, e.first)))
-            detail::report_invalid(where, "is not closed (an edge belongs to only one face), vertex", static_cast<double>(e.first));
+            detail::report_invalid(where, "is not closed (an edge belongs to only one face), vertex",
+                                   static_cast<double>(e.first));
         if (e.first < e.second) edges_.push_back(e);
     }
 
@@ -343,12 +350,16 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
         if (!vertex_tree.any_in_front(f.normal, f.offset, tolerance)) continue;
         for (const Vec3<T>& v : vertices_)
             if (dot(f.normal, v) - f.offset > tolerance)
-                detail::report_invalid(where, "is not convex; a vertex lies in front of a face plane by (m)", static_cast<double>(dot(f.normal, v) - f.offset));
+                detail::report_invalid(where, "is not convex; a vertex lies in front of a face plane by (m)",
+                                       static_cast<double>(dot(f.normal, v) - f.offset));
     }
 
     // Adjacency in compressed rows.
     std::vector<std::uint32_t> degree(n, 0), face_degree(n, 0);
-    for (const auto& e : edges_) { ++degree[e.first]; ++degree[e.second]; }
+    for (const auto& e : edges_) {
+        ++degree[e.first];
+        ++degree[e.second];
+    }
     for (std::uint32_t index : face_indices_) ++face_degree[index];
     neighbor_offsets_.assign(n + 1, 0);
     vertex_face_offsets_.assign(n + 1, 0);
@@ -362,8 +373,9 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices,
     // closed surface of genus 0 (a convex one) and gives 4 for two.
     const long euler = static_cast<long>(n) - static_cast<long>(edges_.size()) + static_cast<long>(faces_.size());
     if (euler != 2)
-        detail::report_invalid(where, "is not one closed surface (V - E + F must be 2: two shells, e.g. a doubled or nested copy?); V - E + F",
-                               static_cast<double>(euler));
+        detail::report_invalid(
+            where, "is not one closed surface (V - E + F must be 2: two shells, e.g. a doubled or nested copy?); V - E + F",
+            static_cast<double>(euler));
     neighbors_.resize(neighbor_offsets_[n]);
     vertex_faces_.resize(vertex_face_offsets_[n]);
     std::vector<std::uint32_t> fill(neighbor_offsets_.begin(), neighbor_offsets_.end() - 1);
@@ -474,12 +486,15 @@ std::pair<ConvexPolyhedron<T>, Vec3<T>> ConvexPolyhedron<T>::recentered() const 
     for (Vec3<T>& v : moved) v -= shift;
     std::vector<std::vector<std::uint32_t>> faces;
     faces.reserve(faces_.size());
-    for (const Face& f : faces_)
-        faces.emplace_back(face_indices_.begin() + f.first, face_indices_.begin() + f.first + f.count);
+    for (const Face& f : faces_) faces.emplace_back(face_indices_.begin() + f.first, face_indices_.begin() + f.first + f.count);
     return {ConvexPolyhedron(std::move(moved), faces), shift};
 }
 
-namespace f32 { using ConvexPolyhedron = xeno::ConvexPolyhedron<float>; }
-namespace f64 { using ConvexPolyhedron = xeno::ConvexPolyhedron<double>; }
+namespace f32 {
+using ConvexPolyhedron = xeno::ConvexPolyhedron<float>;
+}
+namespace f64 {
+using ConvexPolyhedron = xeno::ConvexPolyhedron<double>;
+}
 
 }  // namespace xeno

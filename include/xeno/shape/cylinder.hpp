@@ -83,7 +83,11 @@ private:
     T half_height_;  ///< metres
 };
 
-namespace f32 { using Cylinder = xeno::Cylinder<float>; }
-namespace f64 { using Cylinder = xeno::Cylinder<double>; }
+namespace f32 {
+using Cylinder = xeno::Cylinder<float>;
+}
+namespace f64 {
+using Cylinder = xeno::Cylinder<double>;
+}
 
 }  // namespace xeno

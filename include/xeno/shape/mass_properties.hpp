@@ -23,9 +23,9 @@ namespace xeno {
 /// centre of mass in the local axes (kg·m²).
 template <class T>
 struct MassProperties {
-    T mass{};               ///< kg, > 0
-    Vec3<T> center{};       ///< metres, shape-local frame
-    Mat3<T> inertia{};      ///< kg·m², about center, local axes
+    T mass{};           ///< kg, > 0
+    Vec3<T> center{};   ///< metres, shape-local frame
+    Mat3<T> inertia{};  ///< kg·m², about center, local axes
 };
 
 namespace detail {
@@ -33,8 +33,8 @@ namespace detail {
 /// Volume, centroid and unit-density inertia about the centroid of a closed polyhedron whose
 /// faces (index lists into vertices, first/count into indices) wind counter-clockwise from outside.
 template <class T, class FaceRange>
-MassProperties<T> polyhedron_unit_density(const std::vector<Vec3<T>>& vertices,
-                                          const std::vector<std::uint32_t>& indices, const FaceRange& faces) {
+MassProperties<T> polyhedron_unit_density(const std::vector<Vec3<T>>& vertices, const std::vector<std::uint32_t>& indices,
+                                          const FaceRange& faces) {
     // Integrate about a reference point near the middle to keep round-off small far from 0.
     Vec3<T> ref = Vec3<T>::zero();
     for (const Vec3<T>& v : vertices) ref += v;
@@ -42,7 +42,7 @@ MassProperties<T> polyhedron_unit_density(const std::vector<Vec3<T>>& vertices,
 
     T six_volume = T(0);
     Vec3<T> weighted_centroid = Vec3<T>::zero();  // Σ det · (a + b + c)
-    Mat3<T> covariance = Mat3<T>::zero();          // Σ det · A C_can Aᵀ, C_can = (1 + δij)/120
+    Mat3<T> covariance = Mat3<T>::zero();         // Σ det · A C_can Aᵀ, C_can = (1 + δij)/120
     for (const auto& face : faces) {
         const Vec3<T> a = vertices[indices[face.first]] - ref;
         for (std::uint32_t k = 1; k + 1 < face.count; ++k) {
@@ -71,17 +71,17 @@ MassProperties<T> polyhedron_unit_density(const std::vector<Vec3<T>>& vertices,
 /// The mass properties of shape at the given density (kg/m³): mass = density × volume.
 /// Non-positive or non-finite density is rejected (InvalidArgument).
 template <class Shape>
-MassProperties<typename Shape::scalar_type> mass_properties(const Shape& shape,
-                                                            typename Shape::scalar_type density) {
+MassProperties<typename Shape::scalar_type> mass_properties(const Shape& shape, typename Shape::scalar_type density) {
     using T = typename Shape::scalar_type;
     detail::require_positive(density, "mass_properties", "density");
     MassProperties<T> m = shape.unit_mass_properties();
     m.mass *= density;
     m.inertia = m.inertia * density;
     // Density × volume (× length² for the inertia) can leave the range of T at finite inputs.
-    if (!(std::isfinite(m.mass) && m.mass > T(0) && is_finite(m.inertia) && m.inertia[0].x > T(0) &&
-          m.inertia[1].y > T(0) && m.inertia[2].z > T(0)))
-        detail::report_invalid("mass_properties", "mass (density x volume) and inertia must be finite and > 0 in this precision; density",
+    if (!(std::isfinite(m.mass) && m.mass > T(0) && is_finite(m.inertia) && m.inertia[0].x > T(0) && m.inertia[1].y > T(0) &&
+          m.inertia[2].z > T(0)))
+        detail::report_invalid("mass_properties",
+                               "mass (density x volume) and inertia must be finite and > 0 in this precision; density",
                                static_cast<double>(density));
     return m;
 }
@@ -99,7 +99,11 @@ Mat3<T> shifted_inertia(const Mat3<T>& inertia_about_center, T mass, const Vec3<
     return inertia_about_center + (Mat3<T>::identity() * dot(d, d) - outer(d, d)) * mass;
 }
 
-namespace f32 { using MassProperties = xeno::MassProperties<float>; }
-namespace f64 { using MassProperties = xeno::MassProperties<double>; }
+namespace f32 {
+using MassProperties = xeno::MassProperties<float>;
+}
+namespace f64 {
+using MassProperties = xeno::MassProperties<double>;
+}
 
 }  // namespace xeno

@@ -22,7 +22,8 @@ ConvexPolyhedron<T> make_box_polyhedron(const Vec3<T>& half_extents) {
     for (int i = 0; i < 8; ++i)  // bit 0: x, bit 1: y, bit 2: z; set bit = + side
         v.push_back({(i & 1) ? half_extents.x : -half_extents.x, (i & 2) ? half_extents.y : -half_extents.y,
                      (i & 4) ? half_extents.z : -half_extents.z});
-    return ConvexPolyhedron<T>(std::move(v), {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}});
+    return ConvexPolyhedron<T>(std::move(v),
+                               {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}});
 }
 
 /// A right prism whose cross-section (in x-y) is the isosceles triangle with base 2·half_width

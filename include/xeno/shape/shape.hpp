@@ -77,7 +77,8 @@ Aabb<T> world_bounds(const Shape<T>& s, const Transform<T>& t) {
                 const Vec3<T> a = r.column(1);
                 Vec3<T> half;
                 for (int i = 0; i < 3; ++i)
-                    half[i] = shape.half_height() * std::abs(a[i]) + shape.radius() * std::sqrt(std::max(T(0), T(1) - a[i] * a[i]));
+                    half[i] =
+                        shape.half_height() * std::abs(a[i]) + shape.radius() * std::sqrt(std::max(T(0), T(1) - a[i] * a[i]));
                 return Aabb<T>::from_center(t.position, half);
             } else {
                 const Aabb<T> local = shape.local_bounds();
@@ -88,7 +89,11 @@ Aabb<T> world_bounds(const Shape<T>& s, const Transform<T>& t) {
         s);
 }
 
-namespace f32 { using Shape = xeno::Shape<float>; }
-namespace f64 { using Shape = xeno::Shape<double>; }
+namespace f32 {
+using Shape = xeno::Shape<float>;
+}
+namespace f64 {
+using Shape = xeno::Shape<double>;
+}
 
 }  // namespace xeno

@@ -51,7 +51,11 @@ private:
     T radius_;  ///< metres
 };
 
-namespace f32 { using Sphere = xeno::Sphere<float>; }
-namespace f64 { using Sphere = xeno::Sphere<double>; }
+namespace f32 {
+using Sphere = xeno::Sphere<float>;
+}
+namespace f64 {
+using Sphere = xeno::Sphere<double>;
+}
 
 }  // namespace xeno

@@ -32,7 +32,11 @@ struct SupportFace {
     const Vec3<T>& operator[](int i) const { return vertex[static_cast<std::size_t>(i)]; }
 };
 
-namespace f32 { using SupportFace = xeno::SupportFace<float>; }
-namespace f64 { using SupportFace = xeno::SupportFace<double>; }
+namespace f32 {
+using SupportFace = xeno::SupportFace<float>;
+}
+namespace f64 {
+using SupportFace = xeno::SupportFace<double>;
+}
 
 }  // namespace xeno
