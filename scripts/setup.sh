@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Installs what xeno's tests, benchmarks and examples need on Debian/Ubuntu, only when missing:
 # idempotent, and silent when everything is already there. The library itself needs none of it.
-#   scripts/setup.sh test   compilers, CMake, doctest, Catch2, OSMesa, libpng, libccd, Bullet
+#   scripts/setup.sh test   compilers, CMake, clang-format, doctest, Catch2, OSMesa, libpng, libccd, Bullet
 #   scripts/setup.sh main   the same plus ffmpeg (GIF/MP4) and gnuplot (plots)
 set -euo pipefail
 
-packages=(cmake ninja-build g++ clang libclang-rt-14-dev pkg-config
+packages=(cmake ninja-build g++ clang libclang-rt-14-dev clang-format pkg-config
           doctest-dev catch2 libosmesa6-dev libpng-dev libccd-dev libbullet-dev)
 if [[ "${1:-test}" == main ]]; then
   packages+=(ffmpeg gnuplot-nox)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The README's second command: set up, then build and run everything xeno tests.
-#   0. no file cites anything outside the repository (scripts/check_refs.sh)
+#   0. no file cites anything outside the repository (scripts/check_refs.sh); every C++ file is
+#      formatted by .clang-format, no line over 130 characters (scripts/check_format.sh)
 #   1. g++ Release, warnings as errors: every public header compiled alone, tests (unit + slow),
 #      benchmarks and examples built
 #   2. clang++ Release, warnings as errors: every header alone, the unit tests (the slow ones run
@@ -43,8 +44,9 @@ if [[ "${XENO_TEST_QUICK:-0}" == 1 ]]; then
   exit 0
 fi
 
-step "every reference in the repository points inside it"
+step "every reference in the repository points inside it; C++ formatted by .clang-format"
 scripts/check_refs.sh
+scripts/check_format.sh
 
 step "g++ Release, -Werror, all targets"
 configure_and_test gcc -DCMAKE_CXX_COMPILER=g++
