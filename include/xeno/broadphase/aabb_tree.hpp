@@ -80,6 +80,14 @@ public:
     /// Calls f(proxy) for every proxy whose fat box overlaps box (touching counts), in tree order.
     template <class F>
     void query(const Aabb<T>& box, F&& f) const;
+    /// Walks the proxies whose fat box the segment origin + t · direction, 0 <= t <= reach, meets,
+    /// nearer boxes first, calling reach = f(proxy, reach) for each; reach starts at `length`.
+    /// f returns the reach to go on with: unchanged, a hit's distance (only nearer boxes are
+    /// visited after that, what a closest-hit search wants), or a negative value to stop.
+    template <class F>
+    void query_segment(const Vec3<T>& origin, const Vec3<T>& direction, T length, F&& f) const;
+    /// Room for this many proxies (their ids below it) without allocating on insert or rebuild.
+    void reserve(std::size_t proxies);
 
     /// Number of proxies in the tree.
     std::size_t size() const { return proxy_count_; }
@@ -89,6 +97,9 @@ public:
     T margin() const { return margin_; }
     /// Reinsertions (moves out of the fat box) since construction: the cost of incoherence.
     std::size_t reinsertions() const { return reinsertions_; }
+    /// Inserts, removes and reinsertions since the last build: a tree grown by many edits is
+    /// several times slower to query than a built one (docs/benchmarks.md, "World queries").
+    std::size_t edits_since_build() const { return edits_since_build_; }
     /// Checks every invariant (links, heights, inner boxes enclose children, leaf count); for
     /// tests, O(n).
     bool valid() const;
@@ -278,22 +289,120 @@ void AabbTree<T>::build_all() {
     edits_since_build_ = 0;
 }
 
+namespace detail {
+
+/// The traversal stack of the queries: nodes and the distances at which a segment enters them, on the
+/// call's own stack while the tree is no deeper than its array (an AVL tree of 2^32 leaves is at
+/// most 46 deep), spilling to the heap past that: no allocation per query, and queries from
+/// several threads share nothing.
+template <class T>
+class SegmentStack {
+public:
+    struct Item {
+        std::uint32_t node;
+        T enter;
+    };
+    bool empty() const { return size_ == 0; }
+    void push(std::uint32_t node, T enter) {
+        if (size_ < kFixed) fixed_[size_] = {node, enter};
+        else spill_.push_back({node, enter});
+        ++size_;
+    }
+    Item pop() {
+        --size_;
+        if (size_ < kFixed) return fixed_[size_];
+        const Item item = spill_.back();
+        spill_.pop_back();
+        return item;
+    }
+
+private:
+    static constexpr std::size_t kFixed = 64;
+    Item fixed_[kFixed];
+    std::vector<Item> spill_;
+    std::size_t size_ = 0;
+};
+
+/// Where the segment origin + t · direction, t in [0, reach], enters box; infinity when it misses.
+/// `inverse` holds 1 / direction per axis (unused where direction is 0).
+template <class T>
+T segment_entry(const Aabb<T>& box, const Vec3<T>& origin, const Vec3<T>& direction, const Vec3<T>& inverse, T reach) {
+    T enter = T(0), exit = reach;
+    for (int i = 0; i < 3; ++i) {
+        if (direction[i] == T(0)) {
+            if (origin[i] < box.min[i] || origin[i] > box.max[i]) return ScalarTraits<T>::infinity;
+            continue;
+        }
+        T t0 = (box.min[i] - origin[i]) * inverse[i], t1 = (box.max[i] - origin[i]) * inverse[i];
+        if (t0 > t1) std::swap(t0, t1);
+        enter = std::max(enter, t0);
+        exit = std::min(exit, t1);
+        if (enter > exit) return ScalarTraits<T>::infinity;
+    }
+    return enter;
+}
+
+}  // namespace detail
+
 template <class T>
 template <class F>
 void AabbTree<T>::query(const Aabb<T>& box, F&& f) const {
     if (root_ == kNull) return;
-    std::vector<std::uint32_t> stack{root_};
+    detail::SegmentStack<T> stack;  // (the entry distances unused)
+    stack.push(root_, T(0));
     while (!stack.empty()) {
-        const Node& node = nodes_[stack.back()];
-        stack.pop_back();
+        const Node& node = nodes_[stack.pop().node];
         if (!overlaps(node.box, box)) continue;
         if (node.leaf()) {
             f(node.proxy);
         } else {
-            stack.push_back(node.child1);
-            stack.push_back(node.child2);
+            stack.push(node.child1, T(0));
+            stack.push(node.child2, T(0));
         }
     }
+}
+
+// Depth first on an explicit stack, the nearer child on top; a node is tested when its parent is
+// popped and skipped at its own turn if the reach has shrunk below its entry since. The boxes are
+// fat (a margin beyond every shape), so the reciprocal's rounding cannot cut off a shape the
+// exact test would hit.
+template <class T>
+template <class F>
+void AabbTree<T>::query_segment(const Vec3<T>& origin, const Vec3<T>& direction, T length, F&& f) const {
+    if (root_ == kNull) return;
+    Vec3<T> inverse;
+    for (int i = 0; i < 3; ++i) inverse[i] = direction[i] == T(0) ? T(0) : T(1) / direction[i];
+    T reach = length;
+    detail::SegmentStack<T> stack;
+    stack.push(root_, detail::segment_entry(nodes_[root_].box, origin, direction, inverse, reach));
+    while (!stack.empty()) {
+        const typename detail::SegmentStack<T>::Item item = stack.pop();
+        if (item.enter > reach) continue;
+        const Node& node = nodes_[item.node];
+        if (node.leaf()) {
+            reach = f(node.proxy, reach);
+            if (reach < T(0)) return;
+            continue;
+        }
+        const T enter1 = detail::segment_entry(nodes_[node.child1].box, origin, direction, inverse, reach);
+        const T enter2 = detail::segment_entry(nodes_[node.child2].box, origin, direction, inverse, reach);
+        const bool one_first = enter1 <= enter2;  // a miss enters at infinity
+        const std::uint32_t near = one_first ? node.child1 : node.child2, far = one_first ? node.child2 : node.child1;
+        const T near_enter = std::min(enter1, enter2), far_enter = std::max(enter1, enter2);
+        if (far_enter <= reach) stack.push(far, far_enter);
+        if (near_enter <= reach) stack.push(near, near_enter);
+    }
+}
+
+template <class T>
+void AabbTree<T>::reserve(std::size_t proxies) {
+    const auto grow = [](auto& table, std::size_t n) {
+        if (table.capacity() < n) table.reserve(std::max(n, 2 * table.capacity()));
+    };
+    grow(nodes_, 2 * proxies);
+    grow(leaf_of_, proxies);
+    grow(fat_, proxies);
+    grow(build_, proxies);
 }
 
 template <class T>

@@ -336,6 +336,8 @@ struct SnapshotAccess {
         check_world(out);
         out.solver_index_.assign(out.bodies_.size(), 0);
         out.rebuild_joint_pairs();
+        out.rebuild_query_tree();
+        out.index_contacts(out.bodies_.size());
         // Keep the target's callbacks; take everything else.
         out.listener_ = std::move(world.listener_);
         out.filter_ = std::move(world.filter_);

@@ -16,7 +16,8 @@
 //                        and N iterations)
 //    7. restitution      one pass after the substeps
 //    8. finish           impulses stored in the manifolds, poses and velocities written back
-//    9. sleep, events    islands of slow bodies fall asleep; contact events are reported
+//    9. sleep, events    islands of slow bodies fall asleep; the query trees follow the bodies
+//                        that moved; contact events are reported
 // update(seconds) runs whole steps from an accumulator (thesis Quadro 22) and leaves the remainder
 // as an interpolation factor for rendering.
 #pragma once
@@ -32,6 +33,7 @@
 #include "wide_contact_solver.hpp"
 #include "integrator.hpp"
 #include "joint.hpp"
+#include "query_filter.hpp"
 
 #include <algorithm>
 #include <array>
@@ -71,6 +73,38 @@ struct ContactEvent {
     int count = 0;                    ///< contact points (0 for ended events)
     std::array<Vec3<T>, 4> points{};  ///< m, world: the middle of each contact point pair
     T impulse{};                      ///< N·s: total normal impulse over the step (0 for sensors)
+};
+
+/// The contacts of one body (World::contacts_of): const Contact<T>& in the order of contacts().
+template <class T>
+class ContactRange {
+public:
+    class iterator {
+    public:
+        iterator(const Contact<T>* contacts, const std::uint32_t* at) : contacts_(contacts), at_(at) {}
+        const Contact<T>& operator*() const { return contacts_[*at_]; }
+        const Contact<T>* operator->() const { return &contacts_[*at_]; }
+        iterator& operator++() {
+            ++at_;
+            return *this;
+        }
+        bool operator==(const iterator& o) const { return at_ == o.at_; }
+        bool operator!=(const iterator& o) const { return at_ != o.at_; }
+
+    private:
+        const Contact<T>* contacts_;
+        const std::uint32_t* at_;
+    };
+    ContactRange(const Contact<T>* contacts, const std::uint32_t* first, const std::uint32_t* last)
+        : contacts_(contacts), first_(first), last_(last) {}
+    iterator begin() const { return {contacts_, first_}; }
+    iterator end() const { return {contacts_, last_}; }
+    std::size_t size() const { return static_cast<std::size_t>(last_ - first_); }
+    bool empty() const { return first_ == last_; }
+
+private:
+    const Contact<T>* contacts_;
+    const std::uint32_t *first_, *last_;
 };
 
 /// A ray hit on a body of the world.
@@ -171,6 +205,15 @@ public:
 
     /// Every contact (including speculative ones) after the last step, sorted by body pair.
     const std::vector<Contact<T>>& contacts() const { return contacts_; }
+    /// The contacts of one body (touching or speculative: check Contact::touching), in the order of
+    /// contacts(), found in time proportional to their number (an index rebuilt with the
+    /// contacts). The range is valid until the world next changes; a stale handle is reported.
+    ContactRange<T> contacts_of(BodyId id) const {
+        const std::uint32_t slot = checked(id, "World::contacts_of");
+        if (slot + std::size_t(1) >= contact_start_.size()) return {contacts_.data(), nullptr, nullptr};  // created since
+        const std::uint32_t* list = contact_list_.data();
+        return {contacts_.data(), list + (slot == 0 ? 0 : contact_start_[slot - 1]), list + contact_start_[slot]};
+    }
     const StepStats& last_step_stats() const { return stats_; }
     /// Contact events of the last step (began, persisted, ended), sorted by body pair.
     const std::vector<ContactEvent<T>>& contact_events() const { return events_; }
@@ -186,16 +229,31 @@ public:
         require_outside_filter("World::set_contact_listener");
         listener_ = listener ? std::make_shared<const Listener>(std::move(listener)) : nullptr;
     }
+    // Queries (dynamics/world_query.hpp). They walk the world's query trees, bounding-volume
+    // trees of every body's current box (static bodies in one) kept up to date by every change, so
+    // a short ray or a small box costs O(log n) whatever the world's size; the exact test is the
+    // shape's own. They keep no scratch in the world (each traversal stack is the call's own), so
+    // several threads may query between steps (not yet checked by ThreadSanitizer). A filter
+    // (QueryFilter: layer mask, ignore static / sensors / one body, a callback) chooses the
+    // bodies; the default sees all. Results do not depend on the tree: equal distances go to the
+    // lower slot, lists come in slot order (tested against a scan of every body).
+
     /// The nearest body the ray hits within its length, if any (every shape type, solid: a ray
-    /// starting inside a body hits it at distance 0). Bodies whose broad-phase box the ray
-    /// misses are skipped before the exact test. The direction must be unit (InvalidArgument).
-    std::optional<WorldRayHit<T>> raycast(const Ray<T>& ray) const;
+    /// starting inside a body hits it at distance 0). The direction must be unit (InvalidArgument).
+    std::optional<WorldRayHit<T>> raycast(const Ray<T>& ray, const QueryFilter<T>& filter = {}) const;
+    /// A body the ray hits, the first one found, not necessarily the nearest: a line-of-sight test
+    /// that stops at the first hit.
+    std::optional<WorldRayHit<T>> raycast_any(const Ray<T>& ray, const QueryFilter<T>& filter = {}) const;
     /// Every body the ray hits, nearest first.
-    std::vector<WorldRayHit<T>> raycast_all(const Ray<T>& ray) const;
-    /// The bodies whose shape contains the point.
-    std::vector<BodyId> query_point(const Vec3<T>& point) const;
-    /// The bodies whose (tight) bounding box overlaps the box.
-    std::vector<BodyId> query_aabb(const Aabb<T>& box) const;
+    std::vector<WorldRayHit<T>> raycast_all(const Ray<T>& ray, const QueryFilter<T>& filter = {}) const;
+    /// The bodies whose shape contains the point (surface included).
+    std::vector<BodyId> query_point(const Vec3<T>& point, const QueryFilter<T>& filter = {}) const;
+    /// The bodies whose tight bounding box overlaps the box (touching counts).
+    std::vector<BodyId> query_aabb(const Aabb<T>& box, const QueryFilter<T>& filter = {}) const;
+    /// The bodies a sphere overlaps (intersect(): touching is not overlapping). radius > 0.
+    std::vector<BodyId> overlap_sphere(const Vec3<T>& center, T radius, const QueryFilter<T>& filter = {}) const;
+    /// The bodies a convex shape at a pose overlaps (intersect(): touching is not overlapping).
+    std::vector<BodyId> overlap_shape(const Shape<T>& shape, const Transform<T>& pose, const QueryFilter<T>& filter = {}) const;
 
     /// A user veto on pairs: called during step() for every pair whose boxes overlap (and that
     /// layers and masks allow); returning false means the two never touch. Pass {} to remove it.
@@ -298,8 +356,25 @@ private:
     void finish();
     void discard_overflowed_solve();
     void update_sleep(T dt);
+    void update_query_tree();
+    void rebuild_query_tree();
+    /// A tree grown by edits queries several times slower than a built one (measured 5x at
+    /// 10,000 bodies): rebuilt once the edits since its last build reach half its size, which
+    /// costs O(log n) per edit amortised. Never allocates: reserve() made the room.
+    void refresh_query_tree() {
+        for (AabbTree<T>& tree : query_trees_)
+            if (2 * tree.edits_since_build() >= tree.size()) tree.rebuild();
+    }
+    AabbTree<T>& query_tree_of(std::uint32_t slot) { return query_trees_[bodies_[slot].type_ == BodyType::static_body ? 0 : 1]; }
     void report_events();
+    // Query helpers (world_query.hpp).
+    static void check_ray(const Ray<T>& ray, const char* where);
+    bool seen_by(const QueryFilter<T>& filter, std::uint32_t slot) const { return filter.passes(id_of(slot), bodies_[slot]); }
+    std::optional<RayHit<T>> nearest_hit(std::uint32_t slot, const Ray<T>& ray) const;
+    template <class Exact>
+    std::vector<BodyId> overlapping(const Aabb<T>& box, const QueryFilter<T>& filter, Exact&& exact) const;
     void wake_contacts_of(std::uint32_t slot);
+    void index_contacts(std::size_t slots);
     void end_contact(const Contact<T>& c) {
         if (c.touching) events_pending_.push_back({ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0)});
     }
@@ -311,6 +386,10 @@ private:
     std::vector<Transform<T>> previous_pose_;  ///< per slot: pose before the last step
     SweepAndPrune<T> sweep_;
     AabbTree<T> tree_;
+    /// Each living body's current world box (tight; the tree fattens it), for queries: [0] static
+    /// bodies, [1] the others. Apart, as Box2D v3 keeps them: a level's large static boxes among
+    /// small moving ones made rays at 100,000 bodies twice as slow (world_query.hpp).
+    AabbTree<T> query_trees_[2];
     std::vector<ProxyPair> pairs_;
     std::vector<Contact<T>> contacts_;                     ///< sorted by (a.index, b.index)
     std::vector<detail::SolverBody<T>> solver_bodies_;     ///< slot 0: static stand-in
@@ -331,6 +410,8 @@ private:
     T accumulator_{};
     // Scratch kept between steps so a settled step allocates nothing.
     std::vector<Contact<T>> next_contacts_;          ///< narrow phase output, swapped with contacts_
+    std::vector<std::uint32_t> contact_start_;       ///< per slot: the end of its run in contact_list_ (index_contacts)
+    std::vector<std::uint32_t> contact_list_;        ///< contact indices grouped by body slot
     std::vector<std::uint32_t> island_parent_;       ///< union–find parents per slot (wake, sleep)
     std::vector<std::uint8_t> island_flag_;          ///< per island root: wake it
     std::vector<T> island_sleep_time_;               ///< per island root: the least sleep clock
@@ -411,6 +492,7 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
         };
         make_room(bounds_), make_room(previous_pose_), make_room(solver_index_);
     }
+    for (AabbTree<T>& tree : query_trees_) tree.reserve(bodies_.size() + 1);  // the insert below cannot fail half-way
 
     std::uint32_t slot;
     if (!free_slots_.empty()) {
@@ -450,6 +532,8 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     if (def.type == BodyType::dynamic) b.set_mass_properties(mass);
     b.moved_ = true;
     bounds_[slot] = b.world_bounds();
+    query_tree_of(slot).insert(slot, bounds_[slot]);
+    refresh_query_tree();
     previous_pose_[slot] = b.transform();
     return {slot, b.generation_};
 }
@@ -603,6 +687,7 @@ template <class T>
 void World<T>::reserve(std::size_t bodies, std::size_t contacts) {
     require_outside_filter("World::reserve");
     bounds_.reserve(bodies);
+    for (AabbTree<T>& tree : query_trees_) tree.reserve(bodies);
     previous_pose_.reserve(bodies);
     solver_index_.reserve(bodies);
     contacts_.reserve(contacts);
@@ -620,6 +705,7 @@ void World<T>::destroy_body(BodyId id) {
                                        return gone;
                                    }),
                     contacts_.end());
+    index_contacts(contact_start_.empty() ? 0 : contact_start_.size() - 1);  // its own size: allocates nothing
     for (std::uint32_t i = 0; i < joints_.size(); ++i)
         if (joints_[i].alive && (joints_[i].a.index == slot || joints_[i].b.index == slot))
             destroy_joint({i, joints_[i].generation});
@@ -629,6 +715,7 @@ void World<T>::destroy_body(BodyId id) {
     b.compound_.reset();
     ++b.generation_;
     bounds_[slot] = Aabb<T>{};
+    query_tree_of(slot).remove(slot);
     free_slots_.push_back(slot);
 }
 
@@ -646,70 +733,15 @@ void World<T>::set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& 
     b.wake();
     previous_pose_[slot] = b.transform();
     bounds_[slot] = b.world_bounds().expanded(settings_.speculative_distance);
+    query_tree_of(slot).move(slot, b.world_bounds());
     wake_contacts_of(slot);
 }
 
 template <class T>
-std::vector<WorldRayHit<T>> World<T>::raycast_all(const Ray<T>& ray) const {
-    const char* where = "World::raycast";
-    detail::require_finite_xyz(ray.origin, where, "ray.origin");
-    if (!is_finite(ray.direction) || std::abs(length(ray.direction) - T(1)) > T(1e-3))
-        detail::report_invalid(where, "ray direction must be a unit vector; its length",
-                               static_cast<double>(length(ray.direction)));
-    if (!(ray.max_distance > T(0)))
-        detail::report_invalid(where, "ray max_distance must be > 0", static_cast<double>(ray.max_distance));
-    std::vector<WorldRayHit<T>> hits;
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-        const Body<T>& b = bodies_[i];
-        if (!b.alive_ || !xeno::raycast(bounds_[i], ray)) continue;
-        std::optional<RayHit<T>> nearest;
-        for (std::uint32_t k = 0; k < b.child_count(); ++k)
-            if (const std::optional<RayHit<T>> hit = xeno::raycast(b.child_shape(k), b.child_transform(k), ray))
-                if (!nearest || hit->distance < nearest->distance) nearest = hit;
-        if (nearest) hits.push_back({id_of(i), *nearest});
-    }
-    std::sort(hits.begin(), hits.end(), [](const WorldRayHit<T>& x, const WorldRayHit<T>& y) {
-        return x.hit.distance != y.hit.distance ? x.hit.distance < y.hit.distance : x.body.index < y.body.index;
-    });
-    return hits;
-}
-
-template <class T>
-std::optional<WorldRayHit<T>> World<T>::raycast(const Ray<T>& ray) const {
-    std::vector<WorldRayHit<T>> hits = raycast_all(ray);
-    if (hits.empty()) return std::nullopt;
-    return hits.front();
-}
-
-template <class T>
-std::vector<BodyId> World<T>::query_point(const Vec3<T>& point) const {
-    detail::require_finite_xyz(point, "World::query_point", "point");
-    std::vector<BodyId> out;
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i)
-        if (bodies_[i].alive_ && bounds_[i].contains(point))
-            for (std::uint32_t k = 0; k < bodies_[i].child_count(); ++k)
-                if (contains_point(bodies_[i].child_shape(k), bodies_[i].child_transform(k), point)) {
-                    out.push_back(id_of(i));
-                    break;
-                }
-    return out;
-}
-
-template <class T>
-std::vector<BodyId> World<T>::query_aabb(const Aabb<T>& box) const {
-    detail::require_finite_xyz(box.min, "World::query_aabb", "box.min");
-    detail::require_finite_xyz(box.max, "World::query_aabb", "box.max");
-    std::vector<BodyId> out;
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i)
-        if (bodies_[i].alive_ && overlaps(bounds_[i], box) && overlaps(bodies_[i].world_bounds(), box)) out.push_back(id_of(i));
-    return out;
-}
-
-template <class T>
 void World<T>::wake_contacts_of(std::uint32_t slot) {
-    for (const Contact<T>& c : contacts_) {
-        if (c.a.index == slot && contains(c.b)) bodies_[c.b.index].wake();
-        if (c.b.index == slot && contains(c.a)) bodies_[c.a.index].wake();
+    for (const Contact<T>& c : contacts_of(id_of(slot))) {
+        const BodyId other = c.a.index == slot ? c.b : c.a;
+        if (contains(other)) bodies_[other.index].wake();
     }
 }
 
@@ -760,6 +792,7 @@ void World<T>::step(T dt) {
     solve(dt);
     finish();
     update_sleep(dt);
+    update_query_tree();
     report_events();
 }
 
@@ -885,6 +918,32 @@ void World<T>::update_bounds(T dt) {
     }
 }
 
+// The queries' tree holds each body's current box: after the step, every body whose pose changed
+// gets its new one (a move inside the tree's fat box costs a comparison).
+template <class T>
+void World<T>::update_query_tree() {
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+        const Body<T>& b = bodies_[i];
+        if (!b.alive_ || b.type_ == BodyType::static_body) continue;
+        const Transform<T>& before = previous_pose_[i];
+        if (b.position_ == before.position && b.orientation_ == before.orientation) continue;
+        query_trees_[1].move(i, b.world_bounds());
+    }
+    refresh_query_tree();
+}
+
+// From scratch (a restored snapshot): every living body, then one balanced build.
+template <class T>
+void World<T>::rebuild_query_tree() {
+    for (AabbTree<T>& tree : query_trees_) {
+        tree.clear();
+        tree.reserve(bodies_.size());
+    }
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i)
+        if (bodies_[i].alive_) query_tree_of(i).insert(i, bodies_[i].world_bounds());
+    for (AabbTree<T>& tree : query_trees_) tree.rebuild();
+}
+
 template <class T>
 void World<T>::narrow_phase(T dt) {
     std::vector<Contact<T>>& next = next_contacts_;
@@ -925,7 +984,27 @@ void World<T>::narrow_phase(T dt) {
     }
     while (old < contacts_.size()) end_contact(contacts_[old++]);
     contacts_.swap(next);
+    index_contacts(bodies_.size());
     stats_.contacts = contacts_.size();
+}
+
+// A counting sort of the contacts by body slot (each contact listed under both bodies), in
+// contacts_ order: counts, prefix sums, then a forward fill that leaves contact_start_[i] at the
+// end of slot i's run, which begins where slot i - 1's ends. Slots past `slots` (bodies created
+// since the last step) have no contacts. At a fixed size it allocates nothing.
+template <class T>
+void World<T>::index_contacts(std::size_t slots) {
+    contact_start_.assign(slots + 1, 0u);
+    for (const Contact<T>& c : contacts_) {
+        ++contact_start_[c.a.index + std::size_t(1)];
+        ++contact_start_[c.b.index + std::size_t(1)];
+    }
+    for (std::size_t i = 1; i <= slots; ++i) contact_start_[i] += contact_start_[i - 1];
+    contact_list_.resize(2 * contacts_.size());
+    for (std::uint32_t k = 0; k < contacts_.size(); ++k) {
+        contact_list_[contact_start_[contacts_[k].a.index]++] = k;
+        contact_list_[contact_start_[contacts_[k].b.index]++] = k;
+    }
 }
 
 template <class T>
@@ -1357,6 +1436,12 @@ using Contact = xeno::Contact<double>;
 using ContactEvent = xeno::ContactEvent<double>;
 using WorldRayHit = xeno::WorldRayHit<double>;
 }  // namespace f64
+
+}  // namespace xeno
+
+#include "world_query.hpp"
+
+namespace xeno {
 
 #ifdef XENO_COMPILED_LIB
 // Compiled mode (compiled.hpp): float and double are compiled once, in src/xeno_compiled.cpp.
