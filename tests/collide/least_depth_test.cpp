@@ -73,7 +73,8 @@ TEST_CASE_TEMPLATE("the expansion from MPR's tetrahedron brackets the least dept
         REQUIRE(p.hit);
         Vec3<T> n = p.normal;
         T h = p.depth;
-        detail::expand_to_least_depth(md, simplex, n, h);
+        const int queries = detail::expand_to_least_depth(md, simplex, n, h);
+        CHECK(queries < detail::ExpandingPolytope<T>::kMaxVertices - 4);  // converged, not stopped by the cap
         const double least = 1.3 - double(distance);
         CAPTURE(i);
         CHECK(double(h) <= p.depth);  // never worse than MPR

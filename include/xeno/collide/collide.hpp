@@ -162,7 +162,6 @@ template <class T>
 bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
     detail::require_finite_pose(pose_a, "intersect", "pose_a");
     detail::require_finite_pose(pose_b, "intersect", "pose_b");
-    const bool swap = detail::mpr_order_swapped(a, pose_a, b, pose_b);
     return std::visit(
         [&](const auto& sa, const auto& sb) {
             using SA = std::decay_t<decltype(sa)>;
@@ -178,7 +177,8 @@ bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b,
             } else {
                 // In collide()'s order, so the two agree wherever MPR decides the hit (the poses
                 // are checked above: MPR directly, not mpr_intersect, which checks them again).
-                if (swap) return detail::mpr(MinkowskiDifference<SB, SA>(sb, pose_b, sa, pose_a), true).hit;
+                if (detail::mpr_order_swapped(a, pose_a, b, pose_b))
+                    return detail::mpr(MinkowskiDifference<SB, SA>(sb, pose_b, sa, pose_a), true).hit;
                 return detail::mpr(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b), true).hit;
             }
         },
@@ -193,13 +193,13 @@ template <class T>
 Penetration<T> collide(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
     detail::require_finite_pose(pose_a, "collide", "pose_a");
     detail::require_finite_pose(pose_b, "collide", "pose_b");
-    const bool swap = detail::mpr_order_swapped(a, pose_a, b, pose_b);
     return std::visit(
         [&](const auto& sa, const auto& sb) {
             using SA = std::decay_t<decltype(sa)>;
             using SB = std::decay_t<decltype(sb)>;
             if constexpr (detail::answered_by_mpr<SA, SB>) {
-                if (swap) return detail::flipped(detail::collide_pair(sb, pose_b, sa, pose_a));
+                if (detail::mpr_order_swapped(a, pose_a, b, pose_b))  // only MPR pairs depend on the order
+                    return detail::flipped(detail::collide_pair(sb, pose_b, sa, pose_a));
             }
             return detail::collide_pair(sa, pose_a, sb, pose_b);
         },
