@@ -90,8 +90,9 @@ std::vector<WorldRayHit<T>> scan_ray(const World<T>& world, const Ray<T>& ray, c
         if (!filter.passes(id, b)) return;
         if (const auto hit = scan_hit(b, ray)) hits.push_back({id, *hit});
     });
-    std::stable_sort(hits.begin(), hits.end(),
-                     [](const WorldRayHit<T>& x, const WorldRayHit<T>& y) { return x.hit.distance < y.hit.distance; });
+    std::sort(hits.begin(), hits.end(), [](const WorldRayHit<T>& x, const WorldRayHit<T>& y) {
+        return x.hit.distance != y.hit.distance ? x.hit.distance < y.hit.distance : x.body.index < y.body.index;
+    });
     return hits;
 }
 
