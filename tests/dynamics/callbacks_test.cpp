@@ -63,6 +63,17 @@ TEST_CASE_TEMPLATE("the contact filter may not change the world: every mutating 
         [&] { w.step(T(1) / T(60)); },
         [&] { w.update(T(1)); },
         [&] { restore_snapshot(w, saved); },
+        [&] {
+            w.set_velocity(boxes[2], {T(0), T(1), T(0)}, {});
+        },
+        [&] { w.set_shape(boxes[2], Sphere<T>(T(0.5))); },
+        [&] { w.set_density(boxes[2], T(10)); },
+        [&] { w.set_type(boxes[2], BodyType::static_body); },
+        [&] { w.set_collision_filter(boxes[2], 2u, 0u); },
+        [&] { w.set_sensor(boxes[2], true); },
+        [&] { w.set_fast(boxes[2], true); },
+        [&] { w.set_enabled(boxes[2], false); },
+        [&] { w.set_awake(boxes[2], false); },
     };
     std::size_t next = 0;
     int rejected = 0, calls = 0;

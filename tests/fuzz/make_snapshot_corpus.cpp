@@ -2,8 +2,8 @@
 // SPDX-License-Identifier: MIT
 //
 // Writes the seeds of xeno_fuzz_snapshot: real snapshots of small worlds in float and double
-// (an empty world; ground, a box and a compound joined by a hinge with a freed body slot and a
-// freed joint slot; a ragdoll; a compound stack), each taken mid-motion so that
+// (an empty world; ground, a box and a compound joined by a hinge with a freed body slot, a
+// freed joint slot and a disabled body; a ragdoll; a compound stack), each taken mid-motion so that
 // contacts and joints carry warm-start impulses. Running it again rewrites the same values; the
 // padding bytes inside the structs a snapshot stores whole (settings, contacts, joints) are not
 // specified and may differ (double). Usage: xeno_fuzz_snapshot_corpus <dir>   (the repository's is tests/fuzz/corpus/snapshot)
@@ -44,6 +44,8 @@ void small_world(World<T>& w) {
     for (int i = 0; i < 10; ++i) w.step(T(1) / T(60));
     w.destroy_joint(spare);
     w.destroy_body(falling);
+    d.position = {T(-3), T(0.5), T(0)};
+    w.set_enabled(w.create_body(Sphere<T>(T(0.5)), d), false);
 }
 
 template <class T>

@@ -30,6 +30,9 @@ struct SnapshotAccess;
 
 enum class BodyType : std::uint8_t { static_body, kinematic, dynamic };
 
+/// What World::set_shape does with a dynamic body's mass: density × the new shape's, or as it was.
+enum class MassUpdate : std::uint8_t { recompute, keep };
+
 /// A handle to a body: slot index and generation. Default-constructed handles are invalid.
 struct BodyId {
     static constexpr std::uint32_t invalid_index = ~std::uint32_t(0);
@@ -48,7 +51,7 @@ struct BodyDef {
     Quat<T> orientation = Quat<T>::identity();  ///< normalised on creation; must not be zero
     Vec3<T> linear_velocity{};                  ///< m/s, world
     Vec3<T> angular_velocity{};                 ///< rad/s, world
-    T density = T(1000);                        ///< kg/m³ (dynamic bodies): mass = density × volume
+    T density = T(1000);                        ///< kg/m³: mass = density × volume (dynamic, or on becoming dynamic)
     T mass = T(0);                              ///< kg: > 0 sets the mass directly, inertia scaled to it
     Material<T> material{};
     T linear_damping = T(0);   ///< 1/s: v decays as 1/(1 + c dt) per step
@@ -62,7 +65,9 @@ struct BodyDef {
     std::uint64_t user_data = 0;
 };
 
-/// A rigid body in a World. Read it through World::body(id); change it through its setters.
+/// A rigid body in a World. Read it through World::body(id); change its motion and material through
+/// its setters, and what the world keeps about it (pose, shape, type, filter, flags) through
+/// World's calls by ID (world_edit.hpp).
 template <class T>
 class Body {
 public:
@@ -123,6 +128,11 @@ public:
     bool sensor() const { return sensor_; }
     bool awake() const { return awake_; }
     bool allow_sleep() const { return allow_sleep_; }
+    /// False while World::set_enabled has taken the body out of the simulation.
+    bool enabled() const { return enabled_; }
+    /// kg/m³: the mass World::set_type and World::set_shape give it when they compute one
+    /// (BodyDef::density, or the mass it was created with over its volume).
+    T density() const { return density_; }
     std::uint32_t layer() const { return layer_; }
     std::uint32_t mask() const { return mask_; }
     std::uint64_t user_data() const { return user_data_; }
@@ -190,6 +200,7 @@ private:
     Material<T> material_{};
     T linear_damping_{}, angular_damping_{}, gravity_scale_{1};
     T sleep_time_{};  ///< s spent below the sleep speeds
+    T density_{};     ///< kg/m³, for mass recomputed after a change of shape or type
     std::uint64_t user_data_{};
     std::uint32_t generation_ = 0;  ///< matches BodyId::generation while the body lives
     std::uint32_t layer_ = 1, mask_ = ~std::uint32_t(0);
@@ -199,6 +210,7 @@ private:
     bool allow_sleep_ = true;
     bool fast_ = false;
     bool sensor_ = false;
+    bool enabled_ = true;    ///< in the simulation (World::set_enabled)
     bool isotropic_ = true;  ///< inertia ∝ identity: no gyroscopic term
     bool moved_ = false;     ///< teleported since the last step (broad phase must see it)
 };

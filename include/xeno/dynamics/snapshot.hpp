@@ -122,7 +122,7 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 2;         // 2: WorldSettings::max_contact_pairs
+constexpr std::uint32_t kSnapshotVersion = 3;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled, density
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {
@@ -238,9 +238,10 @@ struct SnapshotAccess {
             w.put(b.compound_ ? compound_ids.at(b.compound_.get()) : ~std::uint32_t(0));
             w.put(b.position_), w.put(b.orientation_), w.put(b.linear_velocity_), w.put(b.angular_velocity_);
             w.put(b.force_), w.put(b.torque_), w.put(b.inertia_local_), w.put(b.inverse_mass_), w.put(b.material_);
-            w.put(b.linear_damping_), w.put(b.angular_damping_), w.put(b.gravity_scale_), w.put(b.sleep_time_);
+            w.put(b.linear_damping_), w.put(b.angular_damping_), w.put(b.gravity_scale_), w.put(b.sleep_time_), w.put(b.density_);
             w.put(b.user_data_), w.put(b.layer_), w.put(b.mask_), w.put(b.type_);
             w.put(b.awake_), w.put(b.allow_sleep_), w.put(b.fast_), w.put(b.sensor_), w.put(b.isotropic_), w.put(b.moved_);
+            w.put(b.enabled_);
         }
         w.put_vector(world.free_slots_);
         w.put_vector(world.bounds_);
@@ -314,7 +315,7 @@ struct SnapshotAccess {
             b.force_ = r.get<Vec3<T>>(), b.torque_ = r.get<Vec3<T>>(), b.inertia_local_ = r.get<Mat3<T>>();
             b.inverse_mass_ = r.get<T>(), b.material_ = r.get<Material<T>>();
             b.linear_damping_ = r.get<T>(), b.angular_damping_ = r.get<T>(), b.gravity_scale_ = r.get<T>(),
-            b.sleep_time_ = r.get<T>();
+            b.sleep_time_ = r.get<T>(), b.density_ = r.get<T>();
             b.user_data_ = r.get<std::uint64_t>(), b.layer_ = r.get<std::uint32_t>(), b.mask_ = r.get<std::uint32_t>();
             const std::uint8_t type = r.get<std::uint8_t>();
             if (type > static_cast<std::uint8_t>(BodyType::dynamic))
@@ -322,6 +323,7 @@ struct SnapshotAccess {
             b.type_ = static_cast<BodyType>(type);
             b.awake_ = r.get_bool(), b.allow_sleep_ = r.get_bool(), b.fast_ = r.get_bool(), b.sensor_ = r.get_bool();
             b.isotropic_ = r.get_bool(), b.moved_ = r.get_bool();
+            b.enabled_ = r.get_bool();
         }
         out.free_slots_ = r.get_vector<std::uint32_t>();
         out.bounds_ = r.get_vector<Aabb<T>>();
@@ -422,6 +424,7 @@ void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
         bad("a body's damping is not finite and >= 0; body slot");
     if (!std::isfinite(b.gravity_scale_) || !(std::isfinite(b.sleep_time_) && b.sleep_time_ >= T(0)))
         bad("a body's gravity scale or sleep time is out of range; body slot");
+    if (std::isnan(b.density_)) bad("a body's density is not a number; body slot");  // any other value is checked when used
     if (b.type_ == BodyType::dynamic) {
         if (!(std::isfinite(b.inverse_mass_) && b.inverse_mass_ > T(0) && std::isfinite(T(1) / b.inverse_mass_)))
             bad("a dynamic body's inverse mass is not finite and > 0; body slot");
@@ -446,7 +449,10 @@ void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
         if (b.type_ == BodyType::static_body && (b.linear_velocity_ != Vec3<T>::zero() || b.angular_velocity_ != Vec3<T>::zero()))
             bad("a static body moves; body slot");
     }
-    if (!detail::box_ok(w.bounds_[slot])) bad("a body's broad-phase box is not finite with min <= max; body slot");
+    if (b.enabled_ && !detail::box_ok(w.bounds_[slot])) bad("a body's broad-phase box is not finite with min <= max; body slot");
+    const Aabb<T> empty{};  // a disabled body's box stays empty so the broad phase never pairs it
+    if (!b.enabled_ && std::memcmp(&w.bounds_[slot], &empty, sizeof empty) != 0)
+        bad("a disabled body has a broad-phase box; body slot");
     if (!is_finite(w.previous_pose_[slot].position) || !detail::unit_quat(w.previous_pose_[slot].orientation))
         bad("a body's previous pose is not finite with a unit orientation; body slot");
 }
@@ -503,6 +509,8 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
             detail::report_corrupt("a contact's bool byte is neither 0 nor 1; contact", k);
         if (!living(c.a) || !living(c.b) || !(c.a.index < c.b.index))
             detail::report_corrupt("a contact does not join two living bodies a < b; contact", k);
+        if (!w.bodies_[c.a.index].enabled_ || !w.bodies_[c.b.index].enabled_)
+            detail::report_corrupt("a contact has a disabled body; contact", k);
         if (c.child_a >= w.bodies_[c.a.index].child_count() || c.child_b >= w.bodies_[c.b.index].child_count())
             detail::report_corrupt("a contact's part index is out of range; contact", k);
         if (k > 0) {

@@ -19,7 +19,8 @@
 //    9. sleep, events    islands of slow bodies fall asleep; the query trees follow the bodies
 //                        that moved; contact events are reported
 // update(seconds) runs whole steps from an accumulator (thesis Quadro 22) and leaves the remainder
-// as an interpolation factor for rendering.
+// as an interpolation factor for rendering. Between steps, bodies change by ID (world_edit.hpp)
+// and the world answers queries (world_query.hpp).
 #pragma once
 
 #include "../broadphase/brute_force.hpp"
@@ -174,7 +175,38 @@ public:
     Body<T>& body(BodyId id) { return bodies_[checked(id, "World::body")]; }
     const Body<T>& body(BodyId id) const { return bodies_[checked(id, "World::body")]; }
     /// Moves a body (teleport), waking it and the bodies it touched.
+    // Changing a body by ID (world_edit.hpp). Each checks its input first (InvalidArgument, nothing
+    // changed), keeps boxes, contacts and islands true, and wakes what the change can move.
+    /// Teleports the body (no velocity implied; contacts re-found at the next step).
     void set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& orientation);
+    /// Linear (m/s) and angular (rad/s, world) velocity; ignored for static bodies.
+    void set_velocity(BodyId id, const Vec3<T>& linear, const Vec3<T>& angular);
+    /// A kinematic body's velocities set so that the next step of length dt ends at this pose
+    /// (to rounding, within the speed caps); they stay until changed, so call it every step.
+    void move_kinematic(BodyId id, const Vec3<T>& position, const Quat<T>& orientation, T dt);
+    /// A new shape (or compound); a dynamic body's mass is recomputed from its density, or kept.
+    /// Every contact of the body ends (with events); the next step finds the new ones.
+    void set_shape(BodyId id, std::shared_ptr<const Shape<T>> shape, MassUpdate mass = MassUpdate::recompute);
+    void set_shape(BodyId id, const Shape<T>& shape, MassUpdate mass = MassUpdate::recompute) {
+        set_shape(id, std::make_shared<const Shape<T>>(shape), mass);
+    }
+    void set_shape(BodyId id, std::shared_ptr<const Compound<T>> compound, MassUpdate mass = MassUpdate::recompute);
+    void set_shape(BodyId id, const Compound<T>& compound, MassUpdate mass = MassUpdate::recompute) {
+        set_shape(id, std::make_shared<const Compound<T>>(compound), mass);
+    }
+    /// kg/m³ (> 0): a dynamic body's mass becomes density × its shape's; kept for the others.
+    void set_density(BodyId id, T density);
+    /// static ↔ kinematic ↔ dynamic. Becoming dynamic: mass from the body's density. Static: at rest.
+    void set_type(BodyId id, BodyType type);
+    /// The layer bits and the mask of layers it collides with (both sides must agree).
+    void set_collision_filter(BodyId id, std::uint32_t layer, std::uint32_t mask);
+    void set_sensor(BodyId id, bool sensor);
+    void set_fast(BodyId id, bool fast);
+    /// Out of the simulation (no contacts, no motion, joints inert, not found by queries) without
+    /// being destroyed; enabled again where it was.
+    void set_enabled(BodyId id, bool enabled);
+    /// Wakes the body, or puts its whole island to sleep (dynamic bodies; others are unaffected).
+    void set_awake(BodyId id, bool awake);
 
     std::size_t body_count() const { return bodies_.size() - free_slots_.size(); }
     /// Reserves room for this many bodies and contacts, so growing to them allocates once.
@@ -327,6 +359,11 @@ private:
         return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
     }
     void rebuild_joint_pairs();
+    static MassProperties<T> unit_mass(const Shape<T>* shape, const Compound<T>* compound) {
+        return shape ? mass_properties(*shape, T(1)) : compound->unit_mass_properties();
+    }
+    static MassProperties<T> dynamic_mass(const Shape<T>* shape, const Compound<T>* compound, T density, T mass,
+                                          const char* where);
     BodyId create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
                             const BodyDef<T>& def);
     void collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, std::vector<Contact<T>>& next);
@@ -334,11 +371,14 @@ private:
     BodyId id_of(std::uint32_t slot) const { return {slot, bodies_[slot].generation_}; }
     /// An awake dynamic body, or a kinematic body with a velocity: something that can push.
     static bool active(const Body<T>& b) {
+        if (!b.enabled_) return false;
         if (b.type_ == BodyType::dynamic) return b.awake_;
         return b.type_ == BodyType::kinematic &&
                (length_squared(b.linear_velocity_) > T(0) || length_squared(b.angular_velocity_) > T(0));
     }
     /// The speed cap of the integrator: the settings' for most bodies, 1e6 m/s (float) for fast ones.
+    /// A joint acts while it lives and both its bodies are enabled (set_enabled).
+    bool joint_active(const Joint<T>& j) const { return j.alive && bodies_[j.a.index].enabled_ && bodies_[j.b.index].enabled_; }
     T speed_limit(const Body<T>& b) const { return b.fast_ ? detail::max_setting_length<T>() : settings_.max_linear_speed; }
     /// How fast the body can travel this step (its speed within the cap; a velocity whose length
     /// overflows is capped like any other), for boxes and margins that must stay finite.
@@ -374,6 +414,12 @@ private:
     template <class Exact>
     std::vector<BodyId> overlapping(const Aabb<T>& box, const QueryFilter<T>& filter, Exact&& exact) const;
     void wake_contacts_of(std::uint32_t slot);
+    void end_contacts_of(std::uint32_t slot);
+    void set_shape_impl(std::uint32_t slot, std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
+                        MassUpdate mass, const char* where);
+    void wake_overlapping(std::uint32_t slot);
+    void place_in_broad_phase(std::uint32_t slot);
+    static void require_centred(const Shape<T>& shape, const char* where);
     void index_contacts(std::size_t slots);
     void end_contact(const Contact<T>& c) {
         if (c.touching) events_pending_.push_back({ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0)});
@@ -448,12 +494,7 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     detail::require_non_negative(def.linear_damping, where, "linear_damping");
     detail::require_non_negative(def.angular_damping, where, "angular_damping");
     detail::require_at_most(def.gravity_scale, ScalarTraits<T>::max_size, where, "gravity_scale");
-    const Vec3<T> centre = shape ? interior_point(*shape) : Vec3<T>::zero();
-    if (shape && length(centre) > T(1e-4) * bounding_radius(*shape))
-        detail::report_invalid(where,
-                               "the shape's centre of mass must be its local origin (make_convex_hull and "
-                               "ConvexPolyhedron::recentered() re-centre); distance (m)",
-                               static_cast<double>(length(centre)));
+    if (shape) require_centred(*shape, where);
 
     // Every check comes before the first change: a rejected body leaves the world as it was.
     if (def.type != BodyType::static_body && def.type != BodyType::kinematic && def.type != BodyType::dynamic)
@@ -465,26 +506,7 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     if (def.type == BodyType::dynamic) {
         detail::require_non_negative(def.mass, where, "mass");
         detail::require_positive(def.density, where, "density");
-        mass = shape ? mass_properties(*shape, T(1)) : compound->unit_mass_properties();
-        if (def.mass <= T(0)) {
-            mass.mass *= def.density;
-            mass.inertia = mass.inertia * def.density;
-        }
-        if (def.mass > T(0)) {
-            mass.inertia = mass.inertia * (def.mass / mass.mass);
-            mass.mass = def.mass;
-        }
-        mass.center = Vec3<T>::zero();
-        // Density (or mass) times the shape's volume and inertia can leave the range of T: reject
-        // here, not in set_mass_properties once the slot is taken.
-        if (!(std::isfinite(mass.mass) && mass.mass > T(0) && is_finite(mass.inertia) && mass.inertia[0].x > T(0) &&
-              mass.inertia[1].y > T(0) && mass.inertia[2].z > T(0)))
-            detail::report_invalid(
-                where, "mass and inertia (density or mass times the shape's) must be finite and > 0 in this precision; mass",
-                static_cast<double>(mass.mass));
-        // The checks set_mass_properties makes (a positive-definite inertia with a finite
-        // inverse), made here, before the slot is taken.
-        detail::check_mass_properties(mass, shape ? bounding_radius(*shape) : compound->bounding_radius(), where);
+        mass = dynamic_mass(shape.get(), compound.get(), def.density, def.mass, where);
     }
     if (free_slots_.empty()) {  // grow the tables first, so an allocation failure changes nothing
         const auto make_room = [](auto& table) {
@@ -529,13 +551,42 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
         b.linear_velocity_ = def.linear_velocity;
         b.angular_velocity_ = def.angular_velocity;
     }
-    if (def.type == BodyType::dynamic) b.set_mass_properties(mass);
+    b.density_ = def.density;
+    if (def.type == BodyType::dynamic) {
+        b.set_mass_properties(mass);
+        if (def.mass > T(0)) b.density_ = def.mass / unit_mass(b.shape_.get(), b.compound_.get()).mass;
+    }
     b.moved_ = true;
     bounds_[slot] = b.world_bounds();
     query_tree_of(slot).insert(slot, bounds_[slot]);
     refresh_query_tree();
     previous_pose_[slot] = b.transform();
     return {slot, b.generation_};
+}
+
+/// Mass properties of a dynamic body of this shape (or compound): `mass` > 0 sets the mass (the
+/// inertia scaled to it), else density × the shape's. Checked as set_mass_properties checks them,
+/// and that they stay within the range of T; reports naming `where` and changes nothing.
+template <class T>
+MassProperties<T> World<T>::dynamic_mass(const Shape<T>* shape, const Compound<T>* compound, T density, T mass,
+                                         const char* where) {
+    MassProperties<T> m = unit_mass(shape, compound);
+    if (mass <= T(0)) {
+        m.mass *= density;
+        m.inertia = m.inertia * density;
+    } else {
+        m.inertia = m.inertia * (mass / m.mass);
+        m.mass = mass;
+    }
+    m.center = Vec3<T>::zero();
+    // Density (or mass) times the shape's volume and inertia can leave the range of T.
+    if (!(std::isfinite(m.mass) && m.mass > T(0) && is_finite(m.inertia) && m.inertia[0].x > T(0) && m.inertia[1].y > T(0) &&
+          m.inertia[2].z > T(0)))
+        detail::report_invalid(
+            where, "mass and inertia (density or mass times the shape's) must be finite and > 0 in this precision; mass",
+            static_cast<double>(m.mass));
+    detail::check_mass_properties(m, shape ? bounding_radius(*shape) : compound->bounding_radius(), where);
+    return m;
 }
 
 template <class T>
@@ -655,7 +706,7 @@ void World<T>::prepare_joints(T h) {
         Softness<T>::make(std::min(settings_.contact_hertz, T(0.125) / h), settings_.contact_damping_ratio, h);
     for (std::uint32_t i = 0; i < joints_.size(); ++i) {
         Joint<T>& j = joints_[i];
-        if (!j.alive) continue;
+        if (!joint_active(j)) continue;
         detail::JointConstraint<T> c;
         c.joint = i;
         c.a = solver_index_[j.a.index];
@@ -697,15 +748,7 @@ template <class T>
 void World<T>::destroy_body(BodyId id) {
     require_outside_filter("World::destroy_body");
     const std::uint32_t slot = checked(id, "World::destroy_body");
-    wake_contacts_of(slot);
-    contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
-                                   [&](const Contact<T>& c) {
-                                       const bool gone = c.a.index == slot || c.b.index == slot;
-                                       if (gone) end_contact(c);  // reported after the next step
-                                       return gone;
-                                   }),
-                    contacts_.end());
-    index_contacts(contact_start_.empty() ? 0 : contact_start_.size() - 1);  // its own size: allocates nothing
+    end_contacts_of(slot);
     for (std::uint32_t i = 0; i < joints_.size(); ++i)
         if (joints_[i].alive && (joints_[i].a.index == slot || joints_[i].b.index == slot))
             destroy_joint({i, joints_[i].generation});
@@ -719,22 +762,19 @@ void World<T>::destroy_body(BodyId id) {
     free_slots_.push_back(slot);
 }
 
+/// Ends every contact of a body (reported after the next step, as the narrow phase reports
+/// them), waking the bodies on the other side: what destroying, disabling or reshaping it does.
 template <class T>
-void World<T>::set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& orientation) {
-    const char* where = "World::set_transform";
-    require_outside_filter(where);
-    const std::uint32_t slot = checked(id, where);
-    detail::require_finite_xyz(position, where, "position");
-    detail::require_orientation(orientation, where, "orientation");
-    Body<T>& b = bodies_[slot];
-    b.position_ = position;
-    b.orientation_ = normalized(orientation);
-    b.moved_ = true;
-    b.wake();
-    previous_pose_[slot] = b.transform();
-    bounds_[slot] = b.world_bounds().expanded(settings_.speculative_distance);
-    query_tree_of(slot).move(slot, b.world_bounds());
+void World<T>::end_contacts_of(std::uint32_t slot) {
     wake_contacts_of(slot);
+    contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
+                                   [&](const Contact<T>& c) {
+                                       const bool gone = c.a.index == slot || c.b.index == slot;
+                                       if (gone) end_contact(c);
+                                       return gone;
+                                   }),
+                    contacts_.end());
+    index_contacts(contact_start_.empty() ? 0 : contact_start_.size() - 1);  // its own size: allocates nothing
 }
 
 template <class T>
@@ -910,7 +950,7 @@ void World<T>::update_bounds(T dt) {
     // so contacts exist before the bodies meet.
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         Body<T>& b = bodies_[i];
-        if (!b.alive_) continue;
+        if (!b.alive_ || !b.enabled_) continue;  // a disabled body's box stays empty
         if (b.type_ == BodyType::static_body && !b.moved_) continue;
         const T reach = settings_.speculative_distance + travel_speed(b) * dt;
         bounds_[i] = b.world_bounds().expanded(reach);
@@ -924,7 +964,7 @@ template <class T>
 void World<T>::update_query_tree() {
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         const Body<T>& b = bodies_[i];
-        if (!b.alive_ || b.type_ == BodyType::static_body) continue;
+        if (!b.alive_ || !b.enabled_ || b.type_ == BodyType::static_body) continue;
         const Transform<T>& before = previous_pose_[i];
         if (b.position_ == before.position && b.orientation_ == before.orientation) continue;
         query_trees_[1].move(i, b.world_bounds());
@@ -940,7 +980,7 @@ void World<T>::rebuild_query_tree() {
         tree.reserve(bodies_.size());
     }
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
-        if (bodies_[i].alive_) query_tree_of(i).insert(i, bodies_[i].world_bounds());
+        if (bodies_[i].alive_ && bodies_[i].enabled_) query_tree_of(i).insert(i, bodies_[i].world_bounds());
     for (AabbTree<T>& tree : query_trees_) tree.rebuild();
 }
 
@@ -963,8 +1003,9 @@ void World<T>::narrow_phase(T dt) {
         const Body<T>& b = bodies_[pair.b];
         // (A free slot's box is empty and pairs with nothing; checked anyway, so a broad phase
         // can never hand a destroyed body to the narrow phase.)
-        const bool wanted = a.alive_ && b.alive_ && (a.type_ == BodyType::dynamic || b.type_ == BodyType::dynamic) &&
-                            (a.layer_ & b.mask_) && (b.layer_ & a.mask_) &&
+        const bool wanted = a.alive_ && b.alive_ && a.enabled_ && b.enabled_ &&
+                            (a.type_ == BodyType::dynamic || b.type_ == BodyType::dynamic) && (a.layer_ & b.mask_) &&
+                            (b.layer_ & a.mask_) &&
                             !std::binary_search(unconnected_pairs_.begin(), unconnected_pairs_.end(), pair_key(pair.a, pair.b)) &&
                             filter_allows(pair.a, pair.b);
         if (!wanted) {
@@ -1091,7 +1132,7 @@ void World<T>::build_islands() {
         if (c.touching && !c.sensor && dynamic(c.a.index) && dynamic(c.b.index))
             parent[island_root(c.a.index)] = island_root(c.b.index);
     for (const Joint<T>& j : joints_)
-        if (j.alive && dynamic(j.a.index) && dynamic(j.b.index)) parent[island_root(j.a.index)] = island_root(j.b.index);
+        if (joint_active(j) && dynamic(j.a.index) && dynamic(j.b.index)) parent[island_root(j.a.index)] = island_root(j.b.index);
 }
 
 /// The root of a slot's island (union–find with path halving; after build_islands).
@@ -1111,7 +1152,10 @@ void World<T>::wake_touched_islands(T dt) {
     // a sleeping one, which would act as an immovable wall and eat the impact.
     build_islands();
     auto find = [&](std::uint32_t slot) { return island_root(slot); };
-    auto sleeping = [&](std::uint32_t slot) { return bodies_[slot].type_ == BodyType::dynamic && !bodies_[slot].awake_; };
+    auto sleeping = [&](std::uint32_t slot) {
+        const Body<T>& b = bodies_[slot];
+        return b.type_ == BodyType::dynamic && !b.awake_ && b.enabled_;
+    };
 
     std::vector<std::uint8_t>& wake = island_flag_;
     wake.assign(bodies_.size(), 0);
@@ -1129,7 +1173,7 @@ void World<T>::wake_touched_islands(T dt) {
         reach(c.b.index, c.a.index);
     }
     for (const Joint<T>& j : joints_) {
-        if (!j.alive) continue;
+        if (!joint_active(j)) continue;
         reach(j.a.index, j.b.index);
         reach(j.b.index, j.a.index);
     }
@@ -1149,7 +1193,7 @@ void World<T>::prepare(T dt) {
     std::fill(solver_index_.begin(), solver_index_.end(), 0u);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         const Body<T>& b = bodies_[i];
-        if (!b.alive_ || b.type_ == BodyType::static_body || !b.awake_) continue;
+        if (!b.alive_ || !b.enabled_ || b.type_ == BodyType::static_body || !b.awake_) continue;
         solver_index_[i] = static_cast<std::uint32_t>(solver_bodies_.size());
         detail::SolverBody<T> s;
         // Velocities enter the solver within the integrator's caps: any finite velocity is
@@ -1398,7 +1442,7 @@ void World<T>::update_sleep(T dt) {
     island_min.assign(bodies_.size(), ScalarTraits<T>::infinity);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         Body<T>& b = bodies_[i];
-        if (!b.alive_ || b.type_ != BodyType::dynamic || !b.awake_) continue;
+        if (!b.alive_ || !b.enabled_ || b.type_ != BodyType::dynamic || !b.awake_) continue;
         const bool slow = length_squared(b.linear_velocity_) < lin_sq && length_squared(b.angular_velocity_) < ang_sq;
         b.sleep_time_ = (slow && b.allow_sleep_) ? b.sleep_time_ + dt : T(0);
         const std::uint32_t root = find(i);
@@ -1415,7 +1459,7 @@ void World<T>::update_sleep(T dt) {
     }
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         Body<T>& b = bodies_[i];
-        if (!b.alive_ || b.type_ != BodyType::dynamic || !b.awake_) continue;
+        if (!b.alive_ || !b.enabled_ || b.type_ != BodyType::dynamic || !b.awake_) continue;
         if (island_min[find(i)] >= settings_.sleep_time) {
             b.awake_ = false;
             b.linear_velocity_ = Vec3<T>::zero();
@@ -1439,6 +1483,7 @@ using WorldRayHit = xeno::WorldRayHit<double>;
 
 }  // namespace xeno
 
+#include "world_edit.hpp"
 #include "world_query.hpp"
 
 namespace xeno {
