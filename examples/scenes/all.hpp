@@ -40,7 +40,7 @@ inline const std::vector<std::pair<std::string, std::string>>& scene_list() {
         {"pendulum", "a 2 m pendulum on a ball joint, released from 30 degrees"},
         {"chain", "20 capsule links on ball joints, released horizontally"},
         {"hinged-door", "a door on a hinge swung open against its 90-degree stop"},
-        {"ragdoll", "capsules joined by ball joints and limited hinges, dropped on a step"},
+        {"ragdoll", "capsules joined by swing-twist joints and limited hinges, dropped on a step"},
         {"compound-stack", "compound bodies stacked: four L-shapes and three tables"},
     };
     return list;

@@ -4,8 +4,8 @@
 // Scenes that show the game-facing features: `sleeping-pile` (a pile that falls asleep; sleeping
 // bodies are drawn faded), `ray-fan` (a fan of rays cast each frame; the renderer draws them),
 // `bullet` (a small box fired at 300 m/s at a thin wall), `pendulum`, `chain` (20 links),
-// `hinged-door` (a door swung against its limit) and `ragdoll` (capsules joined by ball and
-// hinge joints, dropped on a step).
+// `hinged-door` (a door swung against its limit) and `ragdoll` (capsules joined by swing-twist
+// and hinge joints, dropped on a step).
 #pragma once
 
 #include "random.hpp"
@@ -153,8 +153,8 @@ Scene hinged_door(World<T>& world) {
     return s;
 }
 
-/// A ragdoll of capsules (torso, head, arms, legs) joined by ball joints at the shoulders and
-/// hips and hinges at the elbows and knees, dropped onto a step. The parts have some angular
+/// A ragdoll of capsules (torso, head, arms, legs) joined by swing-twist joints at the neck,
+/// shoulders and hips and hinges at the elbows and knees, dropped onto a step. The parts have some angular
 /// damping, as ragdolls in games do.
 template <class T>
 Scene ragdoll(World<T>& world, const Vec3<T>& at = {T(0), T(3), T(0)}) {
@@ -180,11 +180,17 @@ Scene ragdoll(World<T>& world, const Vec3<T>& at = {T(0), T(3), T(0)}) {
     const BodyId shin_l = part(T(0.07), T(0.16), {T(-0.12), T(-1.12), T(0)});
     const BodyId thigh_r = part(T(0.08), T(0.16), {T(0.12), T(-0.66), T(0)});
     const BodyId shin_r = part(T(0.07), T(0.16), {T(0.12), T(-1.12), T(0)});
-    world.create_joint(JointDef<T>::ball(torso, head, at + Vec3<T>{T(0), T(0.42), T(0)}));
-    world.create_joint(JointDef<T>::ball(torso, upper_arm_l, at + Vec3<T>{T(-0.22), T(0.25), T(0)}));
-    world.create_joint(JointDef<T>::ball(torso, upper_arm_r, at + Vec3<T>{T(0.22), T(0.25), T(0)}));
-    world.create_joint(JointDef<T>::ball(torso, thigh_l, at + Vec3<T>{T(-0.12), T(-0.42), T(0)}));
-    world.create_joint(JointDef<T>::ball(torso, thigh_r, at + Vec3<T>{T(0.12), T(-0.42), T(0)}));
+    // Swing-twist joints: each limb's twist axis points along it, away from the torso; the cone
+    // bounds how far it swings from where it started, the twist how far it turns about itself.
+    auto limb = [&](BodyId b, const Vec3<T>& anchor, const Vec3<T>& along, T cone, T twist) {
+        world.create_joint(JointDef<T>::swing_twist(torso, b, at + anchor, along, cone, -twist, twist));
+    };
+    const Vec3<T> up = Vec3<T>::unit_y(), down = -Vec3<T>::unit_y(), left = -Vec3<T>::unit_x(), right = Vec3<T>::unit_x();
+    limb(head, {T(0), T(0.42), T(0)}, up, radians(T(40)), radians(T(60)));
+    limb(upper_arm_l, {T(-0.22), T(0.25), T(0)}, left, radians(T(80)), radians(T(45)));
+    limb(upper_arm_r, {T(0.22), T(0.25), T(0)}, right, radians(T(80)), radians(T(45)));
+    limb(thigh_l, {T(-0.12), T(-0.42), T(0)}, down, radians(T(60)), radians(T(20)));
+    limb(thigh_r, {T(0.12), T(-0.42), T(0)}, down, radians(T(60)), radians(T(20)));
     auto limited_hinge = [&](BodyId a, BodyId b, const Vec3<T>& anchor, T lower, T upper) {
         JointDef<T> h = JointDef<T>::hinge(a, b, at + anchor, Vec3<T>::unit_z());
         h.enable_limit = true;

@@ -3,7 +3,7 @@
 //
 // Writes the seeds of xeno_fuzz_snapshot: real snapshots of small worlds in float and double
 // (an empty world; ground, a box and a compound joined by a hinge with a freed body slot, a
-// freed joint slot and a disabled body; a ragdoll; a compound stack), each taken mid-motion so that
+// freed joint slot, a slider and a disabled body; a ragdoll; a compound stack), each taken mid-motion so that
 // contacts and joints carry warm-start impulses. Running it again rewrites the same values; the
 // padding bytes inside the structs a snapshot stores whole (settings, contacts, joints) are not
 // specified and may differ (double). Usage: xeno_fuzz_snapshot_corpus <dir>   (the repository's is tests/fuzz/corpus/snapshot)
@@ -30,7 +30,7 @@ void small_world(World<T>& w) {
     BodyDef<T> d;
     d.type = BodyType::static_body;
     d.position = {T(0), T(-0.5), T(0)};
-    w.create_body(Box<T>(T(4), T(0.5), T(2)), d);
+    const BodyId ground = w.create_body(Box<T>(T(4), T(0.5), T(2)), d);
     d = {};
     d.position = {T(-1), T(0.49), T(0)};
     const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
@@ -40,6 +40,12 @@ void small_world(World<T>& w) {
     d.position = {T(0), T(3), T(0)};
     const BodyId falling = w.create_body(Capsule<T>(T(0.2), T(0.4)), d);
     w.create_joint(JointDef<T>::hinge(box, compound, {T(0), T(0.5), T(0)}, {T(0), T(0), T(1)}));
+    d.position = {T(3), T(2), T(1)};
+    const BodyId carriage = w.create_body(Box<T>(T(0.2), T(0.2), T(0.2)), d);
+    JointDef<T> slider = JointDef<T>::prismatic(ground, carriage, {T(3), T(2), T(1)}, {T(0), T(1), T(0)});
+    slider.enable_limit = true, slider.lower_translation = T(-0.5), slider.upper_translation = T(0.5);
+    slider.enable_motor = true, slider.motor_speed = T(0.1), slider.max_motor_force = T(50);
+    w.create_joint(slider);
     const JointId spare = w.create_joint(JointDef<T>::distance(box, falling, {T(-1), T(1), T(0)}, {T(0), T(3), T(0)}));
     for (int i = 0; i < 10; ++i) w.step(T(1) / T(60));
     w.destroy_joint(spare);

@@ -15,6 +15,15 @@
 //   hinge motor                 one row along the axis, target speed, impulse ≤ max torque · h
 //   fixed orientation           three rows ω_B − ω_A = 0, error 2·vec(q_B (q_A q_rel)⁻¹)
 //   distance                    one row along the line between the anchors, C = |d| − length
+//   prismatic (slider)          the fixed orientation rows; two point rows b_i·d = 0 across the
+//                               axis a_A (d = the anchors' separation) and, along it, a one-sided
+//                               limit row and a force-limited motor row. The axis turns with A, so
+//                               A's lever arm in these rows is r_A + d (Box2D's prismatic joint)
+//   swing-twist (ragdoll)       the point block; a one-sided swing row about t_A × t_B keeping the
+//                               angle between the twist axes t_A, t_B within the cone; a twist limit
+//                               about t_A on B's reference turned onto A's plane (swing removed)
+// A joint's reaction (World::joint_reaction) is its accumulated impulse of the last substep over
+// that substep's length: the force and torque the joint applied to B (−them to A).
 #pragma once
 
 #include "body.hpp"
@@ -25,7 +34,7 @@
 
 namespace xeno {
 
-enum class JointType : std::uint8_t { ball, hinge, fixed, distance };
+enum class JointType : std::uint8_t { ball, hinge, fixed, distance, prismatic, swing_twist };
 
 /// A handle to a joint: slot index and generation (stale after destroy_joint).
 struct JointId {
@@ -42,16 +51,19 @@ template <class T>
 struct JointDef {
     JointType type = JointType::ball;
     BodyId a, b;
-    Vec3<T> anchor_a{};              ///< m, world: where the joint holds body A (and B, except distance)
-    Vec3<T> anchor_b{};              ///< m, world: distance joints only, the point on B
-    Vec3<T> axis{T(0), T(1), T(0)};  ///< hinge axis, world (need not be unit, must not be zero)
-    bool enable_limit = false;       ///< hinge: keep the angle within [lower, upper]
-    T lower_angle{}, upper_angle{};  ///< rad, the hinge angle of B relative to A, 0 at creation
-    bool enable_motor = false;       ///< hinge: drive the relative spin about the axis
-    T motor_speed{};                 ///< rad/s
-    T max_motor_torque{};            ///< N·m
-    T length = T(-1);                ///< distance: m; negative means the anchors' distance at creation
-    bool collide_connected = false;  ///< whether the two bodies still collide with each other
+    Vec3<T> anchor_a{};                          ///< m, world: where the joint holds body A (and B, except distance)
+    Vec3<T> anchor_b{};                          ///< m, world: distance joints only, the point on B
+    Vec3<T> axis{T(0), T(1), T(0)};              ///< hinge or slider axis, world (need not be unit, must not be zero)
+    bool enable_limit = false;                   ///< hinge: keep the angle within [lower, upper]; prismatic: the translation
+    T lower_angle{}, upper_angle{};              ///< rad, the hinge angle of B relative to A, 0 at creation
+    T lower_translation{}, upper_translation{};  ///< m, prismatic: B's anchor along the axis from A's, 0 at creation
+    bool enable_motor = false;                   ///< hinge: drive the relative spin about the axis; prismatic: the slide
+    T motor_speed{};                             ///< rad/s (hinge), m/s (prismatic)
+    T max_motor_torque{};                        ///< N·m (hinge)
+    T max_motor_force{};                         ///< N (prismatic)
+    T cone_angle{};                              ///< rad, swing-twist: the largest angle between the twist axes
+    T length = T(-1);                            ///< distance: m; negative means the anchors' distance at creation
+    bool collide_connected = false;              ///< whether the two bodies still collide with each other
 
     static JointDef ball(BodyId a, BodyId b, const Vec3<T>& anchor) {
         JointDef d;
@@ -70,6 +82,23 @@ struct JointDef {
         d.type = JointType::fixed;
         return d;
     }
+    /// A slider: B keeps A's orientation and moves only along the axis through the anchor.
+    static JointDef prismatic(BodyId a, BodyId b, const Vec3<T>& anchor, const Vec3<T>& axis) {
+        JointDef d = hinge(a, b, anchor, axis);
+        d.type = JointType::prismatic;
+        return d;
+    }
+    /// A shoulder or hip: a ball joint whose twist axes (both `twist_axis` at creation) stay within
+    /// cone_angle of each other and whose twist about them stays within [lower, upper] (rad).
+    static JointDef swing_twist(BodyId a, BodyId b, const Vec3<T>& anchor, const Vec3<T>& twist_axis, T cone_angle, T lower_twist,
+                                T upper_twist) {
+        JointDef d = hinge(a, b, anchor, twist_axis);
+        d.type = JointType::swing_twist;
+        d.cone_angle = cone_angle;
+        d.enable_limit = true;
+        d.lower_angle = lower_twist, d.upper_angle = upper_twist;
+        return d;
+    }
     static JointDef distance(BodyId a, BodyId b, const Vec3<T>& anchor_on_a, const Vec3<T>& anchor_on_b) {
         JointDef d;
         d.type = JointType::distance;
@@ -78,23 +107,34 @@ struct JointDef {
     }
 };
 
+/// What a joint did to body B over the last substep (A got the opposite): World::joint_reaction.
+template <class T>
+struct JointReaction {
+    Vec3<T> force{};   ///< N, world, at B's anchor
+    Vec3<T> torque{};  ///< N·m, world (besides the moment of the force)
+};
+
 /// A joint between two bodies: local frames, settings and accumulated impulses.
 template <class T>
 struct Joint {
     JointType type = JointType::ball;
     BodyId a, b;
     Vec3<T> local_anchor_a{}, local_anchor_b{};  ///< m, body frames
-    Vec3<T> local_axis_a{}, local_axis_b{};      ///< unit, body frames (hinge)
+    Vec3<T> local_axis_a{}, local_axis_b{};      ///< unit, body frames (hinge, prismatic, swing-twist)
     Vec3<T> local_ref_a{}, local_ref_b{};        ///< unit, ⟂ axis, body frames: angle 0 when aligned
     Quat<T> relative_rotation{};                 ///< q_A⁻¹ q_B at creation (fixed)
     T length{};                                  ///< m (distance)
     bool enable_limit = false, enable_motor = false, collide_connected = false;
+    /// Limits and motor: rad, rad/s and N·m for a hinge; m, m/s and N for a prismatic joint; the
+    /// twist limits (rad) of a swing-twist joint.
     T lower_angle{}, upper_angle{}, motor_speed{}, max_motor_torque{};
+    T cone_angle{};  ///< rad (swing-twist)
     // Accumulated impulses (per substep), kept across steps for warm starting.
     Vec3<T> linear_impulse{};   ///< N·s, point rows
     Vec3<T> angular_impulse{};  ///< N·m·s, hinge axis rows / fixed rows
-    T axial_impulse{};          ///< N·m·s: limit (hinge) or the distance row's N·s
-    T motor_impulse{};          ///< N·m·s
+    T axial_impulse{};          ///< N·m·s: limit (hinge); N·s: the distance row, the limit (prismatic)
+    T motor_impulse{};          ///< N·m·s (hinge), N·s (prismatic)
+    T swing_impulse{};          ///< N·m·s, >= 0: the swing-twist cone row
     std::uint32_t generation = 0;
     bool alive = false;
 
@@ -140,20 +180,177 @@ void perpendicular_pair(const Vec3<T>& a, Vec3<T>& b1, Vec3<T>& b2) {
     b2 = cross(a, b1);
 }
 
+/// A swing-twist joint's angles on the current poses: the twist axes, the swing (angle between
+/// them) about `swing_normal` (t_A × t_B normalised; any perpendicular when they are parallel) and
+/// the twist of B about t_A, measured on B's reference turned by the shortest arc from t_B to t_A.
+template <class T>
+struct SwingTwist {
+    Vec3<T> twist_axis{}, swing_normal{};
+    T swing{}, twist{};
+};
+
+template <class T>
+SwingTwist<T> swing_twist_state(const JointConstraint<T>& c, const Quat<T>& dqa, const Quat<T>& dqb) {
+    SwingTwist<T> st;
+    const Vec3<T> ta = rotate(dqa, c.axis_a0), tb = rotate(dqb, c.axis_b0);
+    const Vec3<T> n = cross(ta, tb);
+    const T sin_swing = length(n);
+    st.twist_axis = ta;
+    st.swing = std::atan2(sin_swing, dot(ta, tb));
+    st.swing_normal = sin_swing > T(0) ? n / sin_swing : any_perpendicular(ta);
+    const Vec3<T> ra = rotate(dqa, c.ref_a0), rb = rotate(Quat<T>::from_to(tb, ta), rotate(dqb, c.ref_b0));
+    st.twist = std::atan2(dot(cross(ra, rb), ta), dot(ra, rb));
+    return st;
+}
+
 /// Applies the joint's accumulated impulses (warm start).
 template <class T>
 void warm_start_joint(const Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b) {
     const Vec3<T> ra = rotate(a.dq, c.r_a0), rb = rotate(b.dq, c.r_b0);
     Vec3<T> linear = j.linear_impulse, angular = j.angular_impulse;
     if (j.type == JointType::hinge) angular += rotate(a.dq, c.axis_a0) * (j.axial_impulse + j.motor_impulse);
+    if (j.type == JointType::swing_twist) {
+        const SwingTwist<T> st = swing_twist_state(c, a.dq, b.dq);
+        angular += st.twist_axis * j.axial_impulse - st.swing_normal * j.swing_impulse;
+    }
+    Vec3<T> lever_a = ra;
     if (j.type == JointType::distance) {
         const Vec3<T> d = (b.dp - a.dp) + c.delta_center + rb - ra;
         linear = normalized_or(d, Vec3<T>::unit_y()) * j.axial_impulse;
     }
-    apply_impulse(a, c.mass_a, ra, -linear);
+    if (j.type == JointType::prismatic) {
+        lever_a = ra + (b.dp - a.dp) + c.delta_center + rb - ra;
+        linear += rotate(a.dq, c.axis_a0) * (j.axial_impulse + j.motor_impulse);
+    }
+    apply_impulse(a, c.mass_a, lever_a, -linear);
     apply_impulse(b, c.mass_b, rb, linear);
     a.w -= c.mass_a.inv_inertia * angular;
     b.w += c.mass_b.inv_inertia * angular;
+}
+
+/// The three rows that hold B's orientation at A's times the one they had at creation (fixed and
+/// prismatic joints), as one 3×3 block; the error is 2·vec(q_B (q_A q_rel)⁻¹).
+template <class T>
+void solve_orientation_lock(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, T bias_rate,
+                            T mass_scale, T impulse_scale) {
+    const Quat<T> qa = a.dq * c.qa0, qb = b.dq * c.qb0;
+    Quat<T> err = qb * conjugate(qa * j.relative_rotation);
+    if (err.w < T(0)) err = -err;
+    const Vec3<T> error = err.vec() * T(2);
+    if (const std::optional<Mat3<T>> k_inv = try_inverse(c.mass_a.inv_inertia + c.mass_b.inv_inertia)) {
+        const Vec3<T> cdot = (b.w - a.w) + error * bias_rate;
+        const Vec3<T> impulse = (*k_inv * cdot) * (-mass_scale) - j.angular_impulse * impulse_scale;
+        j.angular_impulse += impulse;
+        a.w -= c.mass_a.inv_inertia * impulse;
+        b.w += c.mass_b.inv_inertia * impulse;
+    }
+}
+
+/// 1 / the effective mass of a linear row along n with lever arms la (A) and lb (B); 0 if none.
+template <class T>
+T row_mass(const JointConstraint<T>& c, const Vec3<T>& la, const Vec3<T>& lb, const Vec3<T>& n) {
+    const Vec3<T> rna = cross(la, n), rnb = cross(lb, n);
+    const T k =
+        c.mass_a.inv_mass + c.mass_b.inv_mass + dot(rna, c.mass_a.inv_inertia * rna) + dot(rnb, c.mass_b.inv_inertia * rnb);
+    return k > T(0) ? T(1) / k : T(0);
+}
+
+/// A prismatic joint's linear rows: across the axis (two rows, soft like the point block), then
+/// the motor and the limit along it (the limit last: it must hold, as a contact does).
+template <class T>
+void solve_slider(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, bool use_bias, T h) {
+    const Vec3<T> ra = rotate(a.dq, c.r_a0), rb = rotate(b.dq, c.r_b0);
+    const Vec3<T> d = (b.dp - a.dp) + c.delta_center + rb - ra;
+    const Vec3<T> la = ra + d;  // the axis turns with A about A's centre
+    const Vec3<T> axis = rotate(a.dq, c.axis_a0);
+    const auto push = [&](const Vec3<T>& n, T lambda) {
+        apply_impulse(a, c.mass_a, la, -n * lambda);
+        apply_impulse(b, c.mass_b, rb, n * lambda);
+    };
+    const auto speed = [&](const Vec3<T>& n) { return dot(b.velocity_at(rb) - a.velocity_at(la), n); };
+    const T bias_rate = use_bias ? c.softness.bias_rate : T(0);
+    const T mass_scale = use_bias ? c.softness.mass_scale : T(1);
+    const T impulse_scale = use_bias ? c.softness.impulse_scale : T(0);
+    Vec3<T> b1, b2;
+    perpendicular_pair(axis, b1, b2);
+    Vec3<T> across = Vec3<T>::zero();
+    for (const Vec3<T>& n : {b1, b2}) {
+        const T m = row_mass(c, la, rb, n);
+        const T accumulated = dot(n, j.linear_impulse);
+        const T bias = clamp(bias_rate * dot(n, d), -c.max_bias_speed, c.max_bias_speed);
+        const T delta = -mass_scale * m * (speed(n) + bias) - impulse_scale * accumulated;
+        across += n * (accumulated + delta);
+        push(n, delta);
+    }
+    j.linear_impulse = across;
+    const T axial_mass = row_mass(c, la, rb, axis);
+    if (j.enable_motor) {
+        const T limit = j.max_motor_torque * h;  // N (max_motor_force) · s
+        const T updated = clamp(j.motor_impulse - axial_mass * (speed(axis) - j.motor_speed), -limit, limit);
+        push(axis, updated - j.motor_impulse);
+        j.motor_impulse = updated;
+    }
+    if (j.enable_limit) {  // one-sided at the nearer end, speculative above it (as the hinge limit)
+        const T s_now = dot(d, axis);
+        const T to_lower = s_now - j.lower_angle, to_upper = j.upper_angle - s_now;
+        const bool at_lower = to_lower <= to_upper;
+        const T sign = at_lower ? T(1) : T(-1);
+        const T gap = at_lower ? to_lower : to_upper;
+        T bias = T(0), ms = T(1), is = T(0);
+        if (gap > T(0)) {
+            bias = gap / h;
+        } else if (use_bias) {
+            bias = c.limit_softness.bias_rate * gap;
+            ms = c.limit_softness.mass_scale;
+            is = c.limit_softness.impulse_scale;
+        }
+        const T current = j.axial_impulse * sign;
+        const T updated = std::max(current - axial_mass * ms * (sign * speed(axis) + bias) - is * current, T(0));
+        push(axis, sign * (updated - current));
+        j.axial_impulse = sign * updated;
+    }
+}
+
+/// One angular limit row about a unit axis (B relative to A): keeps `angle` within [lower,
+/// upper] with a one-sided impulse at the nearer end, speculative while the gap is open (it
+/// stops the bodies where they would reach the stop within the substep), soft like a contact once
+/// past it. `accumulated` is the row's signed impulse along the axis.
+template <class T>
+void solve_angular_limit(const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, const Vec3<T>& axis, T angle, T lower,
+                         T upper, T& accumulated, bool use_bias, T h) {
+    const T kk = dot(axis, (c.mass_a.inv_inertia + c.mass_b.inv_inertia) * axis);
+    const T axial_mass = kk > T(0) ? T(1) / kk : T(0);
+    const T to_lower = angle - lower, to_upper = upper - angle;
+    const bool at_lower = to_lower <= to_upper;
+    const T sign = at_lower ? T(1) : T(-1);  // the row's direction along the axis
+    const T gap = at_lower ? to_lower : to_upper;
+    T bias = T(0), ms = T(1), is = T(0);
+    if (gap > T(0)) {
+        bias = gap * (T(1) / h);
+    } else if (use_bias) {
+        bias = c.limit_softness.bias_rate * gap;
+        ms = c.limit_softness.mass_scale;
+        is = c.limit_softness.impulse_scale;
+    }
+    // The accumulated impulse of the active side stays >= 0 along sign · axis.
+    const T current = accumulated * sign;
+    const T cdot = sign * dot(b.w - a.w, axis);
+    const T updated = std::max(current - axial_mass * ms * (cdot + bias) - is * current, T(0));
+    const Vec3<T> impulse = axis * (sign * (updated - current));
+    accumulated = sign * updated;
+    a.w -= c.mass_a.inv_inertia * impulse;
+    b.w += c.mass_b.inv_inertia * impulse;
+}
+
+/// A swing-twist joint's limits after its point block: the twist, then the cone (the swing is
+/// an angle >= 0 about the normal, limited above only; its impulse is stored as a magnitude).
+template <class T>
+void solve_swing_twist_limits(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, bool use_bias, T h) {
+    const SwingTwist<T> st = swing_twist_state(c, a.dq, b.dq);
+    solve_angular_limit(c, a, b, st.twist_axis, st.twist, j.lower_angle, j.upper_angle, j.axial_impulse, use_bias, h);
+    T along = -j.swing_impulse;  // pushes back: along −normal
+    solve_angular_limit(c, a, b, st.swing_normal, st.swing, -ScalarTraits<T>::max, j.cone_angle, along, use_bias, h);
+    j.swing_impulse = -along;
 }
 
 /// One pass over a joint's rows; use_bias false in the relax pass. h: the substep. The point
@@ -161,7 +358,6 @@ void warm_start_joint(const Joint<T>& j, const JointConstraint<T>& c, SolverBody
 /// (the stop) is solved last, as contact normals are.
 template <class T>
 void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, bool use_bias, T h) {
-    const T inv_h = T(1) / h;
     const Vec3<T> ra = rotate(a.dq, c.r_a0), rb = rotate(b.dq, c.r_b0);
     const T bias_rate = use_bias ? c.softness.bias_rate : T(0);
     const T mass_scale = use_bias ? c.softness.mass_scale : T(1);
@@ -187,6 +383,12 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
         return;
     }
 
+    if (j.type == JointType::prismatic) {
+        solve_orientation_lock(j, c, a, b, bias_rate, mass_scale, impulse_scale);
+        solve_slider(j, c, a, b, use_bias, h);
+        return;
+    }
+
     // The point rows (ball, hinge, fixed), as one 3×3 block.
     const Mat3<T> k = Mat3<T>::identity() * (c.mass_a.inv_mass + c.mass_b.inv_mass) +
                       detail::point_mass_term(ra, c.mass_a.inv_inertia) + detail::point_mass_term(rb, c.mass_b.inv_inertia);
@@ -201,17 +403,11 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
     }
 
     if (j.type == JointType::fixed) {
-        const Quat<T> qa = a.dq * c.qa0, qb = b.dq * c.qb0;
-        Quat<T> err = qb * conjugate(qa * j.relative_rotation);
-        if (err.w < T(0)) err = -err;
-        const Vec3<T> error = err.vec() * T(2);
-        if (const std::optional<Mat3<T>> k_inv = try_inverse(inv_i)) {
-            const Vec3<T> cdot = (b.w - a.w) + error * bias_rate;
-            const Vec3<T> impulse = (*k_inv * cdot) * (-mass_scale) - j.angular_impulse * impulse_scale;
-            j.angular_impulse += impulse;
-            a.w -= c.mass_a.inv_inertia * impulse;
-            b.w += c.mass_b.inv_inertia * impulse;
-        }
+        solve_orientation_lock(j, c, a, b, bias_rate, mass_scale, impulse_scale);
+        return;
+    }
+    if (j.type == JointType::swing_twist) {
+        solve_swing_twist_limits(j, c, a, b, use_bias, h);
         return;
     }
     if (j.type != JointType::hinge) return;
@@ -248,28 +444,8 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
     }
     // Limit: a one-sided row at whichever end is nearer (speculative above it, as contacts).
     if (j.enable_limit) {
-        const Quat<T> qa = a.dq * c.qa0, qb = b.dq * c.qb0;
-        const T angle = j.hinge_angle(qa, qb);
-        const T to_lower = angle - j.lower_angle, to_upper = j.upper_angle - angle;
-        const bool at_lower = to_lower <= to_upper;
-        const T sign = at_lower ? T(1) : T(-1);  // the row's direction along the axis
-        const T s = at_lower ? to_lower : to_upper;
-        T bias = T(0), ms = T(1), is = T(0);
-        if (s > T(0)) {
-            bias = s * inv_h;
-        } else if (use_bias) {
-            bias = c.limit_softness.bias_rate * s;
-            ms = c.limit_softness.mass_scale;
-            is = c.limit_softness.impulse_scale;
-        }
-        // The accumulated impulse of the active side stays >= 0 along sign · axis.
-        const T current = j.axial_impulse * sign;
-        const T cdot = sign * dot(b.w - a.w, axis);
-        const T updated = std::max(current - axial_mass * ms * (cdot + bias) - is * current, T(0));
-        const Vec3<T> impulse = axis * (sign * (updated - current));
-        j.axial_impulse = sign * updated;
-        a.w -= c.mass_a.inv_inertia * impulse;
-        b.w += c.mass_b.inv_inertia * impulse;
+        const T angle = j.hinge_angle(a.dq * c.qa0, b.dq * c.qb0);
+        solve_angular_limit(c, a, b, axis, angle, j.lower_angle, j.upper_angle, j.axial_impulse, use_bias, h);
     }
 }
 

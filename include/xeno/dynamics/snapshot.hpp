@@ -122,7 +122,8 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 3;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled, density
+constexpr std::uint32_t kSnapshotVersion = 3;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
+                                                      // the last substep, prismatic and swing-twist joints
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {
@@ -208,6 +209,7 @@ struct SnapshotAccess {
         w.put(static_cast<std::uint32_t>(sizeof(T)));
         w.put(world.settings_);
         w.put(world.accumulator_);
+        w.put(world.last_substep_);
         // Shapes and compounds, each once, in order of first use.
         std::map<const void*, std::uint32_t> shape_ids, compound_ids;
         std::vector<const Shape<T>*> shapes;
@@ -270,6 +272,10 @@ struct SnapshotAccess {
         check_settings(settings);
         World<T> out(settings);  // the constructor validates the settings as set_settings does
         out.accumulator_ = r.get<T>();
+        out.last_substep_ = r.get<T>();
+        if (!(std::isfinite(out.last_substep_) && out.last_substep_ >= T(0)))
+            detail::report_invalid("restore_snapshot", "the last substep must be finite and >= 0",
+                                   static_cast<double>(out.last_substep_));
         if (!(std::isfinite(out.accumulator_) && out.accumulator_ >= T(0)))
             detail::report_invalid("restore_snapshot", "the accumulator must be finite and >= 0",
                                    static_cast<double>(out.accumulator_));
@@ -545,7 +551,7 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
         if (!detail::raw_bool_ok(j.alive) || !detail::raw_bool_ok(j.enable_limit) || !detail::raw_bool_ok(j.enable_motor) ||
             !detail::raw_bool_ok(j.collide_connected))
             detail::report_corrupt("a joint's bool byte is neither 0 nor 1; joint", k);
-        if (detail::raw_enum(j.type) > detail::raw_enum(JointType::distance))
+        if (detail::raw_enum(j.type) > detail::raw_enum(JointType::swing_twist))
             detail::report_corrupt("a joint's type is not a JointType; joint", k);
         if (!j.alive) continue;
         if (!living(j.a) || !living(j.b) || j.a.index == j.b.index)
@@ -562,7 +568,9 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
                   angular_ok(length(j.angular_impulse), j.a.index, j.b.index) &&
                   linear_ok(j.axial_impulse, j.a.index, j.b.index) && angular_ok(j.axial_impulse, j.a.index, j.b.index) &&
                   angular_ok(j.motor_impulse, j.a.index, j.b.index);
-        if (ok && j.type == JointType::hinge)
+        ok = ok && j.cone_angle >= T(0) && j.cone_angle <= ScalarTraits<T>::pi && std::isfinite(j.swing_impulse) &&
+             j.swing_impulse >= T(0) && angular_ok(j.swing_impulse, j.a.index, j.b.index);
+        if (ok && (j.type == JointType::hinge || j.type == JointType::prismatic || j.type == JointType::swing_twist))
             ok = detail::unit_vector(j.local_axis_a) && detail::unit_vector(j.local_axis_b) &&
                  detail::unit_vector(j.local_ref_a) && detail::unit_vector(j.local_ref_b);
         if (!ok) detail::report_corrupt("a joint's frames, limits or impulses are out of range; joint", k);

@@ -218,7 +218,7 @@ public:
             if (bodies_[i].alive_) f(BodyId{i, bodies_[i].generation_}, bodies_[i]);
     }
     /// Joins two bodies (see JointDef). Checks at the door: living, distinct bodies, not both
-    /// static, finite anchors, a non-zero hinge axis, lower <= upper, max torque >= 0.
+    /// static, finite anchors, a non-zero hinge or slider axis, lower <= upper, max torque or force >= 0.
     JointId create_joint(const JointDef<T>& def);
     /// Removes a joint; its handle becomes stale. Destroying a body removes its joints.
     void destroy_joint(JointId id);
@@ -232,8 +232,22 @@ public:
         const Joint<T>& j = joint(id);
         return j.hinge_angle(bodies_[j.a.index].orientation_, bodies_[j.b.index].orientation_);
     }
+    /// The translation (m) of a slider's anchor on B from its anchor on A, along A's axis.
+    T slider_translation(JointId id) const {
+        const Joint<T>& j = joint(id);
+        const Body<T>& a = bodies_[j.a.index];
+        const Body<T>& b = bodies_[j.b.index];
+        return dot(b.world_point(j.local_anchor_b) - a.world_point(j.local_anchor_a), a.world_vector(j.local_axis_a));
+    }
     /// Sets a hinge's motor (enable, target speed rad/s, max torque N·m); wakes the bodies.
     void set_hinge_motor(JointId id, bool enable, T speed, T max_torque);
+    /// A hinge's or slider's motor: target speed (rad/s or m/s) and max torque (N·m) or force (N).
+    void set_joint_motor(JointId id, bool enable, T speed, T max);
+    /// A hinge's (rad) or slider's (m) limits, lower <= upper; disabling drops the limit's impulse.
+    void set_joint_limits(JointId id, bool enable, T lower, T upper);
+    /// The force (N, world) and torque (N·m) the joint applied to body B over the last substep of
+    /// the last step (A got the opposite); zero before the first step and while the joint is inert.
+    JointReaction<T> joint_reaction(JointId id) const;
 
     /// Every contact (including speculative ones) after the last step, sorted by body pair.
     const std::vector<Contact<T>>& contacts() const { return contacts_; }
@@ -359,6 +373,8 @@ private:
         return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
     }
     void rebuild_joint_pairs();
+    void set_axis_limit_motor(Joint<T>& j, const JointDef<T>& def, const Body<T>& a, const Body<T>& b, const char* where);
+    static void check_limits(T lower, T upper, const char* where);
     static MassProperties<T> unit_mass(const Shape<T>* shape, const Compound<T>* compound) {
         return shape ? mass_properties(*shape, T(1)) : compound->unit_mass_properties();
     }
@@ -454,6 +470,7 @@ private:
     std::shared_ptr<const Listener> listener_;  ///< shared: a running listener outlives its replacement
     std::function<bool(BodyId, BodyId)> filter_;
     T accumulator_{};
+    T last_substep_{};  ///< s: the last step's substep, for joint_reaction
     // Scratch kept between steps so a settled step allocates nothing.
     std::vector<Contact<T>> next_contacts_;          ///< narrow phase output, swapped with contacts_
     std::vector<std::uint32_t> contact_start_;       ///< per slot: the end of its run in contact_list_ (index_contacts)
@@ -587,151 +604,6 @@ MassProperties<T> World<T>::dynamic_mass(const Shape<T>* shape, const Compound<T
             static_cast<double>(m.mass));
     detail::check_mass_properties(m, shape ? bounding_radius(*shape) : compound->bounding_radius(), where);
     return m;
-}
-
-template <class T>
-JointId World<T>::create_joint(const JointDef<T>& def) {
-    const char* where = "World::create_joint";
-    require_outside_filter(where);
-    const std::uint32_t ia = checked(def.a, where), ib = checked(def.b, where);
-    if (ia == ib) detail::report_invalid(where, "a joint needs two different bodies; body index", static_cast<double>(ia));
-    if (def.type != JointType::ball && def.type != JointType::hinge && def.type != JointType::fixed &&
-        def.type != JointType::distance)
-        detail::report_invalid(where, "type must be ball, hinge, fixed or distance; type",
-                               static_cast<double>(static_cast<std::uint8_t>(def.type)));
-    const Body<T>& a = bodies_[ia];
-    const Body<T>& b = bodies_[ib];
-    if (a.type_ == BodyType::static_body && b.type_ == BodyType::static_body)
-        detail::report_invalid(where, "a joint between two static bodies does nothing; body index", static_cast<double>(ib));
-    detail::require_finite_xyz(def.anchor_a, where, "anchor_a");
-    detail::require_finite_xyz(def.anchor_b, where, "anchor_b");
-    Joint<T> j;
-    j.type = def.type;
-    j.a = def.a;
-    j.b = def.b;
-    j.collide_connected = def.collide_connected;
-    j.local_anchor_a = a.local_point(def.anchor_a);
-    j.local_anchor_b = b.local_point(def.type == JointType::distance ? def.anchor_b : def.anchor_a);
-    if (def.type == JointType::hinge) {
-        const std::optional<Vec3<T>> axis = is_finite(def.axis) ? try_normalized(def.axis) : std::nullopt;
-        detail::require_finite_xyz(def.axis, where, "axis");
-        if (!axis)
-            detail::report_invalid(where, "hinge axis must be non-zero; its length", static_cast<double>(length(def.axis)));
-        j.local_axis_a = a.local_vector(*axis);
-        j.local_axis_b = b.local_vector(*axis);
-        const Vec3<T> ref = any_perpendicular(*axis);
-        j.local_ref_a = a.local_vector(ref);
-        j.local_ref_b = b.local_vector(ref);
-        if (def.enable_limit) {
-            detail::require_finite(def.lower_angle, where, "lower_angle");
-            detail::require_finite(def.upper_angle, where, "upper_angle");
-            if (def.lower_angle > def.upper_angle)
-                detail::report_invalid(where, "lower_angle must be <= upper_angle; lower - upper",
-                                       static_cast<double>(def.lower_angle - def.upper_angle));
-        }
-        detail::require_finite(def.motor_speed, where, "motor_speed");
-        detail::require_non_negative(def.max_motor_torque, where, "max_motor_torque");
-        j.enable_limit = def.enable_limit;
-        j.lower_angle = def.lower_angle;
-        j.upper_angle = def.upper_angle;
-        j.enable_motor = def.enable_motor;
-        j.motor_speed = def.motor_speed;
-        j.max_motor_torque = def.max_motor_torque;
-    }
-    j.relative_rotation = conjugate(a.orientation_) * b.orientation_;
-    if (def.type == JointType::distance) {
-        detail::require_finite(def.length, where, "length");
-        j.length = def.length < T(0) ? distance(def.anchor_a, def.anchor_b) : def.length;
-    }
-    std::uint32_t slot;
-    if (!free_joints_.empty()) {
-        slot = free_joints_.back();
-        free_joints_.pop_back();
-        j.generation = joints_[slot].generation;
-        joints_[slot] = j;
-    } else {
-        slot = static_cast<std::uint32_t>(joints_.size());
-        joints_.push_back(j);
-    }
-    joints_[slot].alive = true;
-    bodies_[ia].wake();
-    bodies_[ib].wake();
-    rebuild_joint_pairs();
-    return {slot, joints_[slot].generation};
-}
-
-template <class T>
-void World<T>::destroy_joint(JointId id) {
-    require_outside_filter("World::destroy_joint");
-    const std::uint32_t slot = checked(id, "World::destroy_joint");
-    Joint<T>& j = joints_[slot];
-    if (contains(j.a)) bodies_[j.a.index].wake();
-    if (contains(j.b)) bodies_[j.b.index].wake();
-    j.alive = false;
-    ++j.generation;
-    free_joints_.push_back(slot);
-    rebuild_joint_pairs();
-}
-
-template <class T>
-void World<T>::set_hinge_motor(JointId id, bool enable, T speed, T max_torque) {
-    const char* where = "World::set_hinge_motor";
-    require_outside_filter(where);
-    Joint<T>& j = joints_[checked(id, where)];
-    if (j.type != JointType::hinge)
-        detail::report_invalid(where, "the joint is not a hinge; its type", static_cast<double>(j.type));
-    detail::require_finite(speed, where, "speed");
-    detail::require_non_negative(max_torque, where, "max_torque");
-    j.enable_motor = enable;
-    j.motor_speed = speed;
-    j.max_motor_torque = max_torque;
-    bodies_[j.a.index].wake();
-    bodies_[j.b.index].wake();
-}
-
-template <class T>
-void World<T>::rebuild_joint_pairs() {
-    unconnected_pairs_.clear();
-    for (const Joint<T>& j : joints_)
-        if (j.alive && !j.collide_connected) unconnected_pairs_.push_back(pair_key(j.a.index, j.b.index));
-    std::sort(unconnected_pairs_.begin(), unconnected_pairs_.end());
-}
-
-template <class T>
-void World<T>::prepare_joints(T h) {
-    joint_rows_.clear();
-    using detail::Softness;
-    const Softness<T> soft = Softness<T>::make(std::min(settings_.joint_hertz, T(0.25) / h), settings_.joint_damping_ratio, h);
-    const Softness<T> limit_soft =
-        Softness<T>::make(std::min(settings_.contact_hertz, T(0.125) / h), settings_.contact_damping_ratio, h);
-    for (std::uint32_t i = 0; i < joints_.size(); ++i) {
-        Joint<T>& j = joints_[i];
-        if (!joint_active(j)) continue;
-        detail::JointConstraint<T> c;
-        c.joint = i;
-        c.a = solver_index_[j.a.index];
-        c.b = solver_index_[j.b.index];
-        if (c.a == 0 && c.b == 0) continue;  // both asleep or static
-        c.mass_a = solver_masses_[c.a];
-        c.mass_b = solver_masses_[c.b];
-        const Body<T>& a = bodies_[j.a.index];
-        const Body<T>& b = bodies_[j.b.index];
-        c.r_a0 = rotate(a.orientation_, j.local_anchor_a);
-        c.r_b0 = rotate(b.orientation_, j.local_anchor_b);
-        c.delta_center = b.position_ - a.position_;
-        c.axis_a0 = rotate(a.orientation_, j.local_axis_a);
-        c.axis_b0 = rotate(b.orientation_, j.local_axis_b);
-        c.qa0 = a.orientation_;
-        c.qb0 = b.orientation_;
-        c.softness = settings_.solver == SolverMode::soft_step ? soft : detail::Softness<T>::make(T(0.25) / h, T(1), h);
-        c.limit_softness = settings_.solver == SolverMode::soft_step ? limit_soft : c.softness;
-        c.max_bias_speed = settings_.max_linear_speed;
-        if (!settings_.warm_starting) {
-            j.linear_impulse = j.angular_impulse = Vec3<T>::zero();
-            j.axial_impulse = j.motor_impulse = T(0);
-        }
-        joint_rows_.push_back(c);
-    }
 }
 
 template <class T>
@@ -1185,6 +1057,7 @@ void World<T>::wake_touched_islands(T dt) {
 template <class T>
 void World<T>::prepare(T dt) {
     const T h = dt / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+    last_substep_ = h;
     // Solver bodies: every awake dynamic or kinematic body; slot 0 stands for static ones.
     solver_bodies_.assign(1, detail::SolverBody<T>{});
     solver_masses_.assign(1, detail::SolverMass<T>{});
@@ -1422,10 +1295,10 @@ void World<T>::discard_overflowed_solve() {
     }
     for (Joint<T>& j : joints_) {
         if (is_finite(j.linear_impulse) && is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) &&
-            std::isfinite(j.motor_impulse))
+            std::isfinite(j.motor_impulse) && std::isfinite(j.swing_impulse))
             continue;
         j.linear_impulse = j.angular_impulse = Vec3<T>::zero();
-        j.axial_impulse = j.motor_impulse = T(0);
+        j.axial_impulse = j.motor_impulse = j.swing_impulse = T(0);
     }
 }
 
@@ -1484,6 +1357,7 @@ using WorldRayHit = xeno::WorldRayHit<double>;
 }  // namespace xeno
 
 #include "world_edit.hpp"
+#include "world_joints.hpp"
 #include "world_query.hpp"
 
 namespace xeno {
