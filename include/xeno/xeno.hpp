@@ -36,6 +36,7 @@
 #include "collide/minkowski.hpp"
 #include "collide/mpr.hpp"
 #include "collide/raycast.hpp"
+#include "collide/shape_cast.hpp"
 #include "contact/manifold.hpp"
 #include "debug_draw.hpp"
 #include "dynamics/body.hpp"

@@ -28,6 +28,7 @@
 #include "../broadphase/sweep_and_prune.hpp"
 #include "../collide/collide.hpp"
 #include "../collide/raycast.hpp"
+#include "../collide/shape_cast.hpp"
 #include "../contact/manifold.hpp"
 #include "body.hpp"
 #include "contact_solver.hpp"
@@ -113,6 +114,13 @@ template <class T>
 struct WorldRayHit {
     BodyId body;
     RayHit<T> hit;
+};
+
+/// A shape cast's hit on a body of the world.
+template <class T>
+struct WorldShapeCastHit {
+    BodyId body;
+    ShapeCastHit<T> hit;
 };
 
 /// Counters of the last step, for benchmarks and tests.
@@ -300,6 +308,11 @@ public:
     std::vector<BodyId> overlap_sphere(const Vec3<T>& center, T radius, const QueryFilter<T>& filter = {}) const;
     /// The bodies a convex shape at a pose overlaps (intersect(): touching is not overlapping).
     std::vector<BodyId> overlap_shape(const Shape<T>& shape, const Transform<T>& pose, const QueryFilter<T>& filter = {}) const;
+    /// The first body a shape swept from `pose` along `translation` (m, world) touches: the body
+    /// and where (fraction of the translation, normal from the shape to the body, point on the
+    /// body); bodies it overlaps at the start come first, with fraction 0. Ties go to the lower slot.
+    std::optional<WorldShapeCastHit<T>> shape_cast(const Shape<T>& shape, const Transform<T>& pose, const Vec3<T>& translation,
+                                                   const QueryFilter<T>& filter = {}) const;
 
     /// A user veto on pairs: called during step() for every pair whose boxes overlap (and that
     /// layers and masks allow); returning false means the two never touch. Pass {} to remove it.
@@ -1346,12 +1359,14 @@ using World = xeno::World<float>;
 using Contact = xeno::Contact<float>;
 using ContactEvent = xeno::ContactEvent<float>;
 using WorldRayHit = xeno::WorldRayHit<float>;
+using WorldShapeCastHit = xeno::WorldShapeCastHit<float>;
 }  // namespace f32
 namespace f64 {
 using World = xeno::World<double>;
 using Contact = xeno::Contact<double>;
 using ContactEvent = xeno::ContactEvent<double>;
 using WorldRayHit = xeno::WorldRayHit<double>;
+using WorldShapeCastHit = xeno::WorldShapeCastHit<double>;
 }  // namespace f64
 
 }  // namespace xeno

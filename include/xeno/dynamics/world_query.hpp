@@ -139,4 +139,31 @@ std::vector<BodyId> World<T>::overlap_shape(const Shape<T>& shape, const Transfo
     });
 }
 
+// The bodies whose boxes the swept box (the shape's box at the start and at the end, merged)
+// overlaps are cast against part by part; the nearest hit wins. A sweep through a crowd tries
+// every body in its box: keep long casts for sparse places (or split them).
+template <class T>
+std::optional<WorldShapeCastHit<T>> World<T>::shape_cast(const Shape<T>& shape, const Transform<T>& pose,
+                                                         const Vec3<T>& translation, const QueryFilter<T>& filter) const {
+    detail::require_finite_pose(pose, "World::shape_cast", "pose");
+    detail::require_finite_xyz(translation, "World::shape_cast", "translation");
+    Aabb<T> swept = world_bounds(shape, pose);
+    swept.merge(world_bounds(shape, Transform<T>{pose.position + translation, pose.orientation}));
+    std::optional<WorldShapeCastHit<T>> best;
+    for (const AabbTree<T>& tree : query_trees_)
+        tree.query(swept, [&](std::uint32_t slot) {
+            if (!seen_by(filter, slot)) return;
+            const Body<T>& b = bodies_[slot];
+            for (std::uint32_t k = 0; k < b.child_count(); ++k) {
+                const std::optional<ShapeCastHit<T>> hit =
+                    xeno::shape_cast(shape, pose, translation, b.child_shape(k), b.child_transform(k));
+                if (!hit) continue;
+                if (!best || hit->fraction < best->hit.fraction ||
+                    (hit->fraction == best->hit.fraction && slot < best->body.index))
+                    best = WorldShapeCastHit<T>{id_of(slot), *hit};
+            }
+        });
+    return best;
+}
+
 }  // namespace xeno

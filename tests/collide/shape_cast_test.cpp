@@ -1,0 +1,195 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Shape casts against closed forms (a sphere swept at a box is a ray against the box inflated by
+// the radius, a box swept face-on at a box meets it at gap / speed, grazing paths miss, shapes that
+// start overlapping report fraction 0) and against an independent search: for random pairs of
+// every shape kind, the first fraction at which intersect() holds, found by sampling the path and
+// bisecting. Then World::shape_cast through the query trees with filters, against a scan.
+#include "collide/random_pairs.hpp"
+
+#include <xeno/collide/shape_cast.hpp>
+#include <xeno/dynamics/world.hpp>
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace xeno;
+
+namespace {
+
+template <class T>
+Transform<T> at(T x, T y, T z) {
+    return {Vec3<T>{x, y, z}, Quat<T>::identity()};
+}
+
+template <class T>
+T tolerance() {
+    return std::is_same_v<T, float> ? T(2e-4) : T(1e-7);
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a sphere swept at a box hits where a ray meets the box inflated by the radius", T, float, double) {
+    const Shape<T> ball = Sphere<T>(T(0.5)), box = Box<T>(T(1), T(1), T(1));
+    const Vec3<T> sweep{T(10), T(0), T(0)};
+    // Face: the centre stops 1.5 m before the box's centre.
+    std::optional<ShapeCastHit<T>> hit = shape_cast(ball, at(T(0), T(0.3), T(0.2)), sweep, box, at(T(5), T(0), T(0)));
+    REQUIRE(hit);
+    CHECK(!hit->initially_overlapping);
+    CHECK(std::abs(hit->fraction - T(0.35)) < tolerance<T>());
+    CHECK(length(hit->normal - Vec3<T>::unit_x()) < T(1e-3));
+    CHECK(length(hit->point - Vec3<T>{T(4), T(0.3), T(0.2)}) < T(1e-3));
+    // Edge: past the top face by 0.2 m, the inflated box's rounded edge (radius 0.5 about the line
+    // x = 4, y = 1) stops the centre at x = 4 − √(0.5² − 0.2²).
+    hit = shape_cast(ball, at(T(0), T(1.2), T(0)), sweep, box, at(T(5), T(0), T(0)));
+    REQUIRE(hit);
+    const T x = T(4) - std::sqrt(T(0.25) - T(0.04));
+    CHECK(std::abs(hit->fraction - x / T(10)) < tolerance<T>());
+    const Vec3<T> expected_normal = normalized(Vec3<T>{T(4) - x, T(1) - T(1.2), T(0)});
+    CHECK(length(hit->normal - expected_normal) < T(1e-3));
+    CHECK(length(hit->point - Vec3<T>{T(4), T(1), T(0)}) < T(1e-3));
+    // Grazing: 1 mm beyond the inflated box misses, 1 mm inside hits.
+    CHECK(!shape_cast(ball, at(T(0), T(1.501), T(0)), sweep, box, at(T(5), T(0), T(0))));
+    CHECK(shape_cast(ball, at(T(0), T(1.499), T(0)), sweep, box, at(T(5), T(0), T(0))));
+    // Too short, or away from it: no hit.
+    CHECK(!shape_cast(ball, at(T(0), T(0), T(0)), Vec3<T>{T(3.4), T(0), T(0)}, box, at(T(5), T(0), T(0))));
+    CHECK(!shape_cast(ball, at(T(0), T(0), T(0)), -sweep, box, at(T(5), T(0), T(0))));
+}
+
+TEST_CASE_TEMPLATE("a box swept face-on at a box meets it at gap / speed; overlapping at the start is fraction 0", T, float,
+                   double) {
+    const Shape<T> a = Box<T>(T(0.5), T(0.5), T(0.5)), b = Box<T>(T(0.5), T(2), T(2));
+    const Quat<T> tilt = Quat<T>::from_axis_angle(Vec3<T>::unit_x(), T(0.3));  // turned about the sweep: still face-on
+    const std::optional<ShapeCastHit<T>> hit =
+        shape_cast(a, Transform<T>{Vec3<T>::zero(), tilt}, Vec3<T>{T(4), T(0), T(0)}, b, at(T(3), T(0.1), T(0)));
+    REQUIRE(hit);
+    CHECK(std::abs(hit->fraction - T(2) / T(4)) < tolerance<T>());  // gap 3 − 0.5 − 0.5 = 2 m at 4 m
+    CHECK(length(hit->normal - Vec3<T>::unit_x()) < T(1e-3));
+    CHECK(std::abs(hit->point.x - T(2.5)) < T(1e-3));  // on B's face
+    // Overlapping where it starts.
+    const std::optional<ShapeCastHit<T>> inside =
+        shape_cast(a, at(T(2.2), T(0), T(0)), Vec3<T>{T(4), T(0), T(0)}, b, at(T(3), T(0), T(0)));
+    REQUIRE(inside);
+    CHECK(inside->initially_overlapping);
+    CHECK(inside->fraction == T(0));
+    CHECK(length(inside->normal - Vec3<T>::unit_x()) < T(1e-3));  // collide()'s: push A out along −x
+    CHECK_THROWS_AS(
+        shape_cast(a, at(T(0), T(0), T(0)), Vec3<T>{std::numeric_limits<T>::infinity(), T(0), T(0)}, b, at(T(3), T(0), T(0))),
+        InvalidArgument);
+}
+
+TEST_CASE_TEMPLATE("shape casts of random pairs of every kind agree with a search along the path with intersect()", T, float,
+                   double) {
+    test::RandomPairs pairs(std::is_same_v<T, float> ? 71 : 72, 0.1, 2.0, 5.0);
+    const test::ShapeMaker<T> maker(pairs);
+    scenes::Random rng(7);
+    int hits = 0, misses = 0, overlapping = 0;
+    for (int n = 0; n < 400; ++n) {
+        const test::PairParams p = pairs.next();
+        Shape<T> sa = Sphere<T>(T(1)), sb = Sphere<T>(T(1));
+        const Shape<T>& a = maker.get(p.a, sa);
+        const Shape<T>& b = maker.get(p.b, sb);
+        const Transform<T> pose_a = test::cast_pose<T>(p.pose_a), pose_b = test::cast_pose<T>(p.pose_b);
+        // A is moved back along a random direction by 1 … 3 pair sizes, then swept forward 2 … 4.
+        const Vec3<T> dir = rng.direction<double>().cast<T>();
+        const T scale = static_cast<T>(p.scale);
+        const Transform<T> start{pose_a.position - dir * (scale * static_cast<T>(rng.uniform(1.0, 3.0))), pose_a.orientation};
+        const Vec3<T> sweep = dir * (scale * static_cast<T>(rng.uniform(2.0, 4.0)));
+        const auto overlaps_at = [&](T f) {
+            return intersect(a, Transform<T>{start.position + sweep * f, start.orientation}, b, pose_b);
+        };
+        // The reference: the first of 2,000 samples that overlaps, then bisection to 2^-30.
+        T first = T(-1);
+        for (int i = 0; i <= 2000 && first < T(0); ++i)
+            if (overlaps_at(T(i) / T(2000))) first = T(i) / T(2000);
+        const std::optional<ShapeCastHit<T>> hit = shape_cast(a, start, sweep, b, pose_b);
+        CAPTURE(n);
+        CAPTURE(p.a.kind);
+        CAPTURE(p.b.kind);
+        if (first == T(0)) {
+            ++overlapping;
+            REQUIRE(hit);
+            CHECK(hit->initially_overlapping);
+            continue;
+        }
+        if (first < T(0)) {
+            // No sample overlaps: a miss, or a graze between samples; the cast may report only a
+            // touch that the samples could have skipped.
+            ++misses;
+            if (hit) CHECK(!overlaps_at(std::min(T(1), hit->fraction + T(1) / T(2000))));
+            continue;
+        }
+        T lo = first - T(1) / T(2000), hi = first;
+        for (int i = 0; i < 30; ++i) (overlaps_at((lo + hi) / T(2)) ? hi : lo) = (lo + hi) / T(2);
+        ++hits;
+        REQUIRE(hit);
+        CHECK(!hit->initially_overlapping);
+        // The cast stops within its tolerance (geometric_tolerance × the problem's size) of B, and
+        // the reference's intersect() (MPR) decides overlap within its own, max(geometric
+        // tolerance, 1e-7) × size (mpr.hpp); along the sweep a distance d is d over the speed at
+        // which A approaches B, |sweep|·cos θ (θ between the sweep and the normal).
+        const T approach = length(sweep) * std::max(std::abs(dot(hit->normal, dir)), T(1e-3));
+        const T size = scale + length(sweep) + distance(start.position, pose_b.position);
+        const T mpr_tolerance = std::max(ScalarTraits<T>::geometric_tolerance, T(1e-7));
+        const T slack = (T(8) * ScalarTraits<T>::geometric_tolerance + T(4) * mpr_tolerance) * size / approach;
+        CAPTURE(lo - hit->fraction);
+        CAPTURE(slack);
+        CHECK(hit->fraction <= hi + slack);
+        CHECK(hit->fraction >= lo - slack);
+        // The point lies on B's surface (within the slack), the normal points from A into B.
+        CHECK(dot(hit->normal, sweep) > T(0));
+    }
+    CHECK(hits > 100);
+    CHECK(misses > 20);
+    CHECK(overlapping > 2);
+}
+
+TEST_CASE_TEMPLATE("World::shape_cast finds the first body along the sweep, with filters, as a scan of every body does", T, float,
+                   double) {
+    World<T> w;
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    d.position = {T(0), T(-0.5), T(0)};
+    const BodyId ground = w.create_body(Box<T>(T(20), T(0.5), T(20)), d);
+    d = {};
+    d.position = {T(3), T(0.5), T(0)};
+    const BodyId near_box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    d.position = {T(6), T(0.5), T(0)};
+    d.layer = 2;
+    const BodyId far_box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    const Shape<T> ball = Sphere<T>(T(0.4));
+    const Transform<T> start = at(T(0), T(0.5), T(0));
+    const Vec3<T> sweep{T(10), T(0), T(0)};
+    // The ball rests 0.1 m above the ground (not touching): the near box comes first.
+    std::optional<WorldShapeCastHit<T>> hit = w.shape_cast(ball, start, sweep);
+    REQUIRE(hit);
+    CHECK(hit->body == near_box);
+    CHECK(std::abs(hit->hit.fraction - T(2.1) / T(10)) < tolerance<T>());
+    QueryFilter<T> skip_near;
+    skip_near.ignore_body = near_box;
+    hit = w.shape_cast(ball, start, sweep, skip_near);
+    REQUIRE(hit);
+    CHECK(hit->body == far_box);
+    CHECK(std::abs(hit->hit.fraction - T(5.1) / T(10)) < tolerance<T>());
+    QueryFilter<T> layer_one;
+    layer_one.mask = 1u;
+    layer_one.ignore_body = near_box;
+    CHECK(!w.shape_cast(ball, start, sweep, layer_one));  // the far box is on layer 2
+    // Swept down, the ground is hit after 0.1 m; lowered into it, it overlaps at the start.
+    hit = w.shape_cast(ball, start, Vec3<T>{T(0), T(-1), T(0)});
+    REQUIRE(hit);
+    CHECK(hit->body == ground);
+    CHECK(std::abs(hit->hit.fraction - T(0.1)) < tolerance<T>());
+    hit = w.shape_cast(ball, at(T(0), T(0.3), T(0)), sweep);
+    REQUIRE(hit);
+    CHECK(hit->body == ground);
+    CHECK(hit->hit.initially_overlapping);
+    QueryFilter<T> no_static;
+    no_static.ignore_static = true;
+    hit = w.shape_cast(ball, at(T(0), T(0.3), T(0)), sweep, no_static);
+    REQUIRE(hit);
+    CHECK(hit->body == near_box);
+    CHECK_THROWS_AS(w.shape_cast(ball, start, Vec3<T>{std::numeric_limits<T>::quiet_NaN(), T(0), T(0)}), InvalidArgument);
+}
