@@ -333,23 +333,28 @@ TEST_CASE_TEMPLATE("a static body teleported into a sleeping box wakes it and pu
     CHECK(w.body(box).position().x > T(-0.8) + T(0.5) + T(0.5) - T(0.01));  // pushed clear of the wall
 }
 
-TEST_CASE_TEMPLATE("set_fast turns continuous collision on for a body already moving", T, float, double) {
-    World<T> w;
+TEST_CASE_TEMPLATE("set_fast lifts the speed cap from a body already moving, which still stops at a thin wall", T, float,
+                   double) {
+    World<T> w;  // the default settings: a 400 m/s cap for bodies that are not fast
     BodyDef<T> wall_def;
     wall_def.type = BodyType::static_body;
-    wall_def.position = {T(10), T(0), T(0)};
-    w.create_body(Box<T>(T(0.05), T(2), T(2)), wall_def);
+    wall_def.position = {T(30), T(0), T(0)};
+    w.create_body(Box<T>(T(0.05), T(4), T(2)), wall_def);
     w.set_gravity(Vec3<T>::zero());
     BodyDef<T> d;
     d.linear_velocity = {T(600), T(0), T(0)};  // 10 m a step: jumps the 10 cm wall without CCD
     const BodyId bullet = w.create_body(Sphere<T>(T(0.05)), d);
-    WorldSettings<T> s = w.settings();
-    s.max_linear_speed = T(1000);
-    w.set_settings(s);
+    d.position = {T(0), T(2), T(0)};
+    const BodyId plain = w.create_body(Sphere<T>(T(0.05)), d);
     w.set_fast(bullet, true);
     CHECK(w.body(bullet).fast());
+    w.step(w.settings().fixed_time_step);  // 10 m of free flight for the fast one, 6.7 m for the other
+    CHECK(w.body(bullet).linear_velocity().x == doctest::Approx(600.0).epsilon(1e-6));  // its momentum kept
+    CHECK(w.body(plain).linear_velocity().x == doctest::Approx(400.0).epsilon(1e-6));   // capped
+    CHECK(w.body(bullet).position().x == doctest::Approx(10.0).epsilon(1e-4));
     test::simulate(w, T(0.1));
-    CHECK(w.body(bullet).position().x < T(10));
+    CHECK(w.body(bullet).position().x < T(30));
+    CHECK(w.body(plain).position().x < T(30));
 }
 
 TEST_CASE_TEMPLATE("every by-ID setter rejects bad input and changes nothing (snapshot bytes before and after)", T, float,
