@@ -54,6 +54,11 @@ public:
     const CastVertex<T>& vertex(int i) const { return vertices_[static_cast<std::size_t>(i)]; }
     T weight(int i) const { return weights_[static_cast<std::size_t>(i)]; }
     void add(const CastVertex<T>& p) { vertices_[static_cast<std::size_t>(n_++)] = p; }
+    bool holds(const Vec3<T>& c) const {
+        for (int i = 0; i < n_; ++i)
+            if (vertices_[static_cast<std::size_t>(i)].c == c) return true;
+        return false;
+    }
 
     /// Reduces the simplex to the smallest one whose hull holds the closest point to x and
     /// returns x − (that point). A tetrahedron that holds x returns zero.
@@ -75,10 +80,31 @@ public:
             weights_[static_cast<std::size_t>(kept++)] = w[s];
         }
         n_ = kept;
+        if (n_ == 2) v = edge_offset(v);
+        if (n_ == 3) v = face_offset(x, v);
         return v;
     }
 
 private:
+    // Σ wᵢqᵢ loses the direction of the offset to cancellation when the simplex is much larger
+    // than the offset: a capsule 1 mm above a 100 m box gives, in float, a tilt of 2e-3 rad, the
+    // far corners then pass for support points above x, and the cast never separates. The offset
+    // from an edge or a face is perpendicular to it, and these two restore that from the edges,
+    // which carry no such error.
+
+    /// The offset from an edge with the round-off along the edge taken out.
+    Vec3<T> edge_offset(const Vec3<T>& summed) const {
+        const Vec3<T> e = vertices_[1].c - vertices_[0].c;
+        const T ee = dot(e, e);
+        return ee > T(0) ? summed - e * (dot(summed, e) / ee) : summed;
+    }
+    /// x minus its projection on the plane of the face, along the face's normal.
+    Vec3<T> face_offset(const Vec3<T>& x, const Vec3<T>& summed) const {
+        const Vec3<T>&a = vertices_[0].c, &b = vertices_[1].c, &c = vertices_[2].c;
+        const Vec3<T> n = cross(b - a, c - a);
+        const T nn = dot(n, n);
+        return nn > T(0) ? n * (dot(n, x - a) / nn) : summed;
+    }
     static void segment(const Vec3<T>& a, const Vec3<T>& b, T& wa, T& wb) {
         const Vec3<T> ab = b - a;
         const T denom = dot(ab, ab);
@@ -201,7 +227,13 @@ std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>&
             normal = v;
         }
         if (simplex.size() == 4) break;  // (a tetrahedron that held x ended the loop with v = 0)
-        simplex.add(p);
+        if (simplex.holds(p.c)) {
+            // Exactly, a support point already in the simplex separates (v·w = |v|²), so x moved
+            // and only v is new; one that does not is round-off: x is on C as far as T can tell.
+            if (!(vw > T(0))) break;
+        } else {
+            simplex.add(p);
+        }
         v = simplex.closest(x);
     }
     if (normal == Vec3<T>::zero()) {  // never separated: they overlap where A starts
