@@ -189,7 +189,7 @@ Result run_scene(const std::string& name, const Options& opt, std::vector<Sample
     World<double> wd;
     World<float> wf;
     const scenes::Scene scene = scenes::build(name, wd);
-    scenes::build(name, wf);
+    const scenes::Scene scene_f = scenes::build(name, wf);
     copy_rounded_state(wd, wf);
     if (!opt.sleep) {
         no_sleeping(wd);
@@ -207,6 +207,7 @@ Result run_scene(const std::string& name, const Options& opt, std::vector<Sample
     samples.clear();
     samples.reserve(static_cast<std::size_t>(steps));
     for (int k = 1; k <= steps; ++k) {
+        if (scene.before_step) scene.before_step(dt), scene_f.before_step(static_cast<double>(dt_f));  // (the character)
         wd.step(dt);
         wf.step(dt_f);
         Sample s{};

@@ -19,7 +19,18 @@ class WorldSimulation final : public Simulation {
 public:
     explicit WorldSimulation(const std::string& name) : scene_(scenes::build(name, world_)), rays_(name == "ray-fan") {}
 
-    void step(double seconds) override { world_.update(static_cast<T>(seconds)); }
+    void step(double seconds) override {
+        if (!scene_.before_step) {
+            world_.update(static_cast<T>(seconds));
+            return;
+        }
+        // A scene that drives bodies (the character) runs its hook before every fixed step.
+        const double dt = static_cast<double>(world_.settings().fixed_time_step);
+        for (pending_ += seconds; pending_ >= dt * (1 - 1e-9); pending_ -= dt) {
+            scene_.before_step(dt);
+            world_.step(static_cast<T>(dt));
+        }
+    }
 
     void draw(Renderer& out, bool contacts) const override {
         DrawAdapter<T> adapter(out);
@@ -64,6 +75,7 @@ private:
     World<T> world_;
     scenes::Scene scene_;
     bool rays_;
+    double pending_ = 0;  ///< seconds of simulation owed to a scene with a before_step hook
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 // build by name. Names are those of the renderer issue (thesis scenarios 1–8, then ours).
 #pragma once
 
+#include "character.hpp"
 #include "compounds.hpp"
 #include "features.hpp"
 #include "piles.hpp"
@@ -42,6 +43,7 @@ inline const std::vector<std::pair<std::string, std::string>>& scene_list() {
         {"hinged-door", "a door on a hinge swung open against its 90-degree stop"},
         {"ragdoll", "capsules joined by swing-twist joints and limited hinges, dropped on a step"},
         {"compound-stack", "compound bodies stacked: four L-shapes and three tables"},
+        {"character", "a capsule moved by shape casts: up a step, along a wall, riding a platform"},
     };
     return list;
 }
@@ -71,6 +73,7 @@ Scene build(const std::string& name, World<T>& world) {
     if (name == "hinged-door") return hinged_door(world);
     if (name == "ragdoll") return ragdoll(world);
     if (name == "compound-stack") return compound_stack(world);
+    if (name == "character") return character(world);
     xeno::detail::report_invalid(("xeno::scenes::build: unknown scene '" + name + "'").c_str(), "name length",
                                  static_cast<double>(name.size()));
 }

@@ -8,6 +8,7 @@
 
 #include <xeno/dynamics/world.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct Scene {
     BodyId ground;               ///< the static ground, if any (renderers draw their own floor)
     f64::Vec3 eye{8, 5, 12};
     f64::Vec3 target{0, 1, 0};
+    /// For scenes that drive bodies themselves (the character): called before every step with
+    /// the step's length (s). Programs that step scenes call it when it is set.
+    std::function<void(double)> before_step;
 };
 
 /// A static ground box whose top face is the plane y = 0.

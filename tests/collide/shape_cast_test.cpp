@@ -217,3 +217,38 @@ TEST_CASE_TEMPLATE("World::shape_cast finds the first body along the sweep, with
     CHECK(hit->body == near_box);
     CHECK_THROWS_AS(w.shape_cast(ball, start, Vec3<T>{std::numeric_limits<T>::quiet_NaN(), T(0), T(0)}), InvalidArgument);
 }
+
+TEST_CASE_TEMPLATE("a compound swept at a wall stops where its leading part touches", T, float, double) {
+    // Two balls of radius 0.5 one metre either side of the centre (along z), swept 10 m along x.
+    const Compound<T> dumbbell({{Sphere<T>(T(0.5)), at(T(0), T(0), T(-1))}, {Sphere<T>(T(0.5)), at(T(0), T(0), T(1))}});
+    const Shape<T> wall = Box<T>(T(0.5), T(1), T(1.25));
+    const Vec3<T> sweep{T(10), T(0), T(0)};
+    // The wall (face at x = 5) spans z from 0.5 to 3: only the ball at z = +1 meets it, at x = 4.5.
+    std::optional<ShapeCastHit<T>> hit = shape_cast(dumbbell, at(T(0), T(0), T(0)), sweep, wall, at(T(5.5), T(0), T(1.75)));
+    REQUIRE(hit);
+    CHECK(std::abs(hit->fraction - T(0.45)) < tolerance<T>());
+    CHECK(length(hit->normal - Vec3<T>::unit_x()) < T(1e-3));
+    CHECK(std::abs(hit->point.z - T(1)) < T(1e-3));
+    // Turned a quarter about y, the balls lie along x: the leading one (1 m ahead) touches at 3.5.
+    const Transform<T> turned{Vec3<T>::zero(), Quat<T>::from_axis_angle(Vec3<T>::unit_y(), ScalarTraits<T>::pi / T(2))};
+    hit = shape_cast(dumbbell, turned, sweep, wall, at(T(5.5), T(0), T(0)));
+    REQUIRE(hit);
+    CHECK(std::abs(hit->fraction - T(0.35)) < tolerance<T>());
+    // Through the world: the same, with the wall as a body; a filter that ignores it gives nothing.
+    World<T> w;
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    d.position = {T(5.5), T(0), T(1.75)};
+    const BodyId body = w.create_body(wall, d);
+    std::optional<WorldShapeCastHit<T>> world_hit = w.shape_cast(dumbbell, at(T(0), T(0), T(0)), sweep);
+    REQUIRE(world_hit);
+    CHECK(world_hit->body == body);
+    CHECK(std::abs(world_hit->hit.fraction - T(0.45)) < tolerance<T>());
+    QueryFilter<T> skip;
+    skip.ignore_body = body;
+    CHECK(!w.shape_cast(dumbbell, at(T(0), T(0), T(0)), sweep, skip));
+    // Passing below the wall: nothing (its bottom is at y = −1, the balls reach up to −2.5).
+    CHECK(!w.shape_cast(dumbbell, at(T(0), T(-3), T(0)), sweep));
+    CHECK_THROWS_AS(w.shape_cast(dumbbell, at(T(0), T(0), T(0)), Vec3<T>{T(0), std::numeric_limits<T>::infinity(), T(0)}),
+                    InvalidArgument);
+}

@@ -9,6 +9,7 @@
 
 #include <xeno/dynamics/snapshot.hpp>
 #include <xeno/dynamics/world.hpp>
+#include <xeno/dynamics/world_draw.hpp>
 
 #include <doctest/doctest.h>
 
@@ -48,6 +49,15 @@ std::vector<ContactEventKind> events_between(const World<T>& w, BodyId a, BodyId
         if ((e.a == a && e.b == b) || (e.a == b && e.b == a)) kinds.push_back(e.kind);
     return kinds;
 }
+
+/// Counts the triangles drawn.
+template <class T>
+struct TriangleCounter : DebugDraw<T> {
+    int triangles = 0;
+    void draw_triangle(const Vec3<T>&, const Vec3<T>&, const Vec3<T>&, Color) override { ++triangles; }
+    void draw_line(const Vec3<T>&, const Vec3<T>&, Color) override {}
+    void draw_point(const Vec3<T>&, T, Color) override {}
+};
 
 /// Free fall from rest under the default gravity for t seconds, as the semi-implicit integrator
 /// takes it: within 1 % of ½ g t² at 12 substeps a step.
@@ -192,6 +202,14 @@ TEST_CASE_TEMPLATE("a disabled body's contacts end with events; it stays put, ou
     REQUIRE(w.raycast(down));
     CHECK(w.raycast(down)->body == top);
     for (const BodyId id : w.query_point(held)) CHECK(id != bottom);
+    TriangleCounter<T> all, without;  // and it is not drawn: the same world with it destroyed draws as much
+    draw_world(w, all);
+    World<T> copy;
+    restore_snapshot(copy, save_snapshot(w));
+    copy.destroy_body(bottom);
+    draw_world(copy, without);
+    CHECK(all.triangles == without.triangles);
+    CHECK(all.triangles > 0);
 
     // Enabled again where it was (overlapping the box that fell into its place): the two are
     // pushed apart, with began events, and nothing turns into NaN.

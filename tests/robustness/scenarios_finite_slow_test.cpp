@@ -45,11 +45,12 @@ TEST_CASE_TEMPLATE("every scene stays finite with unit orientations after every 
         const std::string& name = entry.first;  // not a structured binding: CAPTURE takes it into a lambda
         CAPTURE(name);
         World<T> world;
-        scenes::build<T>(name, world);
+        const scenes::Scene scene = scenes::build<T>(name, world);
         const T dt = world.settings().fixed_time_step;
         std::string bad;
         int step = 0;
         for (; step < 300 && bad.empty(); ++step) {
+            if (scene.before_step) scene.before_step(static_cast<double>(dt));
             world.step(dt);
             bad = first_bad_body(world);
         }

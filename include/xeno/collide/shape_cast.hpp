@@ -19,6 +19,7 @@
 // `initially_overlapping` set and collide()'s normal and point.
 #pragma once
 
+#include "../shape/compound.hpp"
 #include "collide.hpp"
 
 #include <array>
@@ -262,6 +263,20 @@ std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>&
         hit.point = touch.point_b;
     }
     return hit;
+}
+
+/// A compound A (posed by its centre-of-mass frame, as a body) swept against B: the first touch of
+/// any of its parts.
+template <class T>
+std::optional<ShapeCastHit<T>> shape_cast(const Compound<T>& a, const Transform<T>& pose_a, const Vec3<T>& translation,
+                                          const Shape<T>& b, const Transform<T>& pose_b) {
+    detail::require_finite_pose(pose_a, "shape_cast", "pose_a");
+    std::optional<ShapeCastHit<T>> best;
+    for (const CompoundChild<T>& child : a.children()) {
+        const std::optional<ShapeCastHit<T>> hit = shape_cast(child.shape, pose_a * child.local, translation, b, pose_b);
+        if (hit && (!best || hit->fraction < best->fraction)) best = hit;
+    }
+    return best;
 }
 
 }  // namespace xeno

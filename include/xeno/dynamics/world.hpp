@@ -313,6 +313,10 @@ public:
     /// body); bodies it overlaps at the start come first, with fraction 0. Ties go to the lower slot.
     std::optional<WorldShapeCastHit<T>> shape_cast(const Shape<T>& shape, const Transform<T>& pose, const Vec3<T>& translation,
                                                    const QueryFilter<T>& filter = {}) const;
+    /// The same for a compound swept from `pose` (its centre-of-mass frame, as a body's
+    /// transform): the first touch of any of its parts.
+    std::optional<WorldShapeCastHit<T>> shape_cast(const Compound<T>& compound, const Transform<T>& pose,
+                                                   const Vec3<T>& translation, const QueryFilter<T>& filter = {}) const;
 
     /// A user veto on pairs: called during step() for every pair whose boxes overlap (and that
     /// layers and masks allow); returning false means the two never touch. Pass {} to remove it.

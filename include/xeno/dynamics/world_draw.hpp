@@ -46,7 +46,7 @@ template <class T>
 void draw_world(const World<T>& world, DebugDraw<T>& out, const DrawOptions<T>& options = {}) {
     if (options.bodies) {
         world.for_each_body([&](BodyId id, const Body<T>& b) {
-            if (options.hide && options.hide(id)) return;
+            if (!b.enabled() || (options.hide && options.hide(id))) return;  // disabled: out of the world
             const Color fill = body_color(id, b);
             for (std::uint32_t k = 0; k < b.child_count(); ++k)
                 draw_shape(out, b.child_shape(k), b.child_transform(k), fill, Color{0.08f, 0.08f, 0.1f, 1.0f});

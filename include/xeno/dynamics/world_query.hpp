@@ -166,4 +166,18 @@ std::optional<WorldShapeCastHit<T>> World<T>::shape_cast(const Shape<T>& shape, 
     return best;
 }
 
+template <class T>
+std::optional<WorldShapeCastHit<T>> World<T>::shape_cast(const Compound<T>& compound, const Transform<T>& pose,
+                                                         const Vec3<T>& translation, const QueryFilter<T>& filter) const {
+    detail::require_finite_pose(pose, "World::shape_cast", "pose");
+    std::optional<WorldShapeCastHit<T>> best;
+    for (const CompoundChild<T>& child : compound.children()) {
+        const std::optional<WorldShapeCastHit<T>> hit = shape_cast(child.shape, pose * child.local, translation, filter);
+        if (hit && (!best || hit->hit.fraction < best->hit.fraction ||
+                    (hit->hit.fraction == best->hit.fraction && hit->body.index < best->body.index)))
+            best = hit;
+    }
+    return best;
+}
+
 }  // namespace xeno
