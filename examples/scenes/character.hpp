@@ -175,9 +175,9 @@ Scene character(World<T>& world) {
     pd.type = BodyType::kinematic;
     pd.position = {T(9), T(0.125), T(0)};
     const BodyId platform = world.create_body(Box<T>(T(1.5), T(0.125), T(1.5)), pd);
-    for (int i = 0; i < 3; ++i)  // on the way from the step to the platform
-        s.bodies.push_back(
-            add_box(world, Vec3<T>{T(0.2), T(0.2), T(0.2)}, Vec3<T>{T(7.2) + T(0.45) * T(i), T(0.2), T(-1.55) + T(0.3) * T(i)}));
+    for (int i = 0; i < 3; ++i)  // beside its first steps: knocked aside
+        s.bodies.push_back(add_box(world, Vec3<T>{T(0.2), T(0.2), T(0.2)},
+                                   Vec3<T>{T(0.8) + T(0.4) * T(i), T(0.2), T(i % 2 == 0 ? 0.38 : -0.38)}));
     auto hero = std::make_shared<CharacterController<T>>(world, Vec3<T>{T(0), T(0), T(0)});
     s.bodies.push_back(hero->body());
     auto time = std::make_shared<T>(T(0));
