@@ -29,12 +29,14 @@
 #include <xeno/broadphase/sweep_and_prune.hpp>
 #include <xeno/collide/collide.hpp>
 #include <xeno/shape/polyhedra.hpp>
+#include <xeno/task_system.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -168,19 +170,15 @@ void compute_bounds(const Scene<T>& s, std::vector<Aabb<T>>& boxes) {
 /// several threads at once, and returns when all have finished.
 using ParallelFor = std::function<void(std::size_t count, const std::function<void(std::size_t begin, std::size_t end)>& body)>;
 
-/// The default parallel-for: `threads` contiguous ranges, threads − 1 of them on new std::threads
-/// and one on the caller. threads <= 1 runs everything on the caller.
+/// The default parallel-for: the ThreadPool a World uses for its step (xeno/task_system.hpp;
+/// one mechanism in the project), with `threads` workers, the caller among them. threads <= 1
+/// runs everything on the caller.
 inline ParallelFor thread_parallel_for(unsigned threads) {
-    return [threads](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body) {
-        const std::size_t parts = std::min<std::size_t>(std::max(1u, threads), count);
-        if (parts <= 1) {
-            if (count > 0) body(0, count);
-            return;
-        }
-        std::vector<std::thread> pool;
-        for (std::size_t k = 1; k < parts; ++k) pool.emplace_back(body, count * k / parts, count * (k + 1) / parts);
-        body(0, count / parts);
-        for (std::thread& t : pool) t.join();
+    std::shared_ptr<ThreadPool> pool = threads > 1 ? std::make_shared<ThreadPool>(threads) : nullptr;
+    return [pool](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body) {
+        if (count == 0) return;
+        xeno::parallel_for(pool.get(), static_cast<std::uint32_t>(count), 1u,
+                           [&](std::uint32_t begin, std::uint32_t end) { body(begin, end); });
     };
 }
 

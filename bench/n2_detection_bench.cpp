@@ -338,7 +338,7 @@ int main(int argc, char** argv) {
 
     // 5. The parallel narrow phase: 1 thread against --threads through the default parallel-for.
     if (opt.threads > 1) {
-        std::printf("parallel narrow phase (std::thread parallel-for): 1 vs %u threads, best of 3 (sap: of 5 warm frames)\n",
+        std::printf("parallel narrow phase (xeno::ThreadPool): 1 vs %u threads, best of 3 (sap: of 5 warm frames)\n",
                     opt.threads);
         const std::size_t nb = std::min<std::size_t>(table_ns.back(), opt.max_bodies);
         const Scene<Real> scene = make_box_scene<Real>(nb, opt.seed);

@@ -9,7 +9,11 @@
 // Bullet (XENO_HAVE_BULLET, bench/CMakeLists.txt), each pyramid also runs in Bullet and its row
 // and xeno float's time over Bullet's print under xeno's float row (bullet_peer.hpp).
 //
-//   xeno_step_bench [--quick]    (--quick: fewer steps and no 5,050-box pyramid)
+//   xeno_step_bench [--quick] [--workers N]
+//     --quick: fewer steps and no 5,050-box pyramid
+//     --workers N: instead, each scene on 1 and on N workers (the world's ThreadPool) in this
+//                  process, ms per step and per stage with the speed-up, and whether both ended
+//                  in the same bits (docs/parallel.md)
 #include "bullet_peer.hpp"
 #include "scenes/random.hpp"
 #include "scenes/stacks.hpp"
@@ -24,6 +28,8 @@
 #include <filesystem>
 #include <new>
 #include <string>
+#include <thread>
+#include <utility>
 
 // The counting allocator: every operator new/delete of this program goes through it.
 namespace {
@@ -252,19 +258,118 @@ void memory_row(int n) {
         pair_stepping);
 }
 
+/// Milliseconds per step of each stage, summed over a run (StepStats::seconds).
+struct StageTimes {
+    static constexpr int count = 10;
+    static constexpr const char* names[count] = {"bounds", "broad",  "narrow", "wake",    "prepare",
+                                                 "solve",  "finish", "sleep",  "queries", "events"};
+    double ms[count] = {};
+    double total = 0;
+    template <class Times>
+    void add(const Times& t) {
+        const double s[count] = {t.bounds, t.broad, t.narrow, t.wake, t.prepare, t.solve, t.finish, t.sleep, t.queries, t.events};
+        for (int i = 0; i < count; ++i) ms[i] += 1000 * s[i];
+    }
+};
+
+/// Every body's position and orientation as raw bits, folded (FNV-1a): equal runs, equal values.
+template <class T>
+std::uint64_t pose_bits(const World<T>& world) {
+    std::uint64_t h = 1469598103934665603ull;
+    world.for_each_body([&](BodyId, const Body<T>& b) {
+        const T v[7] = {b.position().x,    b.position().y,    b.position().z,   b.orientation().w,
+                        b.orientation().x, b.orientation().y, b.orientation().z};
+        unsigned char bytes[sizeof v];
+        std::memcpy(bytes, v, sizeof v);
+        for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+    });
+    return h;
+}
+
+/// One scene on `workers` workers: stage times per step and the final pose bits.
+template <class T, class Build>
+std::pair<StageTimes, std::uint64_t> run_on_workers(const Build& build, int steps, unsigned workers) {
+    World<T> world(no_sleep<T>());
+    build(world);
+    world.set_workers(workers);
+    StageTimes t;
+    const auto start = clock_type::now();
+    for (int i = 0; i < steps; ++i) {
+        world.step(T(1) / T(60));
+        t.add(world.last_step_stats().seconds);
+    }
+    t.total = std::chrono::duration<double, std::milli>(clock_type::now() - start).count() / steps;
+    for (double& ms : t.ms) ms /= steps;
+    return {t, pose_bits(world)};
+}
+
+template <class T, class Build>
+void workers_row(const char* scene, const Build& build, int steps, unsigned workers) {
+    const auto [one, bits_one] = run_on_workers<T>(build, steps, 1);
+    const auto [many, bits_many] = run_on_workers<T>(build, steps, workers);
+    std::printf("%-12s %-6s 1 worker %8.2f ms/step, %u workers %8.2f ms/step: %.2fx  (same bits: %s)\n", scene, precision<T>(),
+                one.total, workers, many.total, one.total / many.total, bits_one == bits_many ? "yes" : "NO");
+    std::printf("  %-8s", "stage");
+    for (const char* name : StageTimes::names) std::printf(" %8s", name);
+    std::printf("\n  %-8s", "1 (ms)");
+    for (double ms : one.ms) std::printf(" %8.3f", ms);
+    std::printf("\n  %-2u%-6s", workers, " (ms)");
+    for (double ms : many.ms) std::printf(" %8.3f", ms);
+    std::printf("\n  %-8s", "speed-up");
+    for (int i = 0; i < StageTimes::count; ++i) std::printf(" %7.2fx", many.ms[i] > 0 ? one.ms[i] / many.ms[i] : 0.0);
+    std::printf("\n");
+}
+
+void workers_table(unsigned workers, bool quick) {
+    const int steps = quick ? 60 : 300;
+    std::printf(
+        "World::step on 1 and %u workers (World::set_workers), 60 Hz, %d steps each, default settings, no sleeping;\n"
+        "this machine has %u hardware threads\n",
+        workers, steps, std::thread::hardware_concurrency());
+    for (int base : {20, 40, 100}) {
+        if (quick && base == 100) break;
+        const std::string name = "pyramid-" + std::to_string(base);
+        workers_row<float>(
+            name.c_str(), [&](World<float>& w) { scenes::pyramid(w, base); }, steps, workers);
+        if (base == 100)
+            workers_row<double>(
+                name.c_str(), [&](World<double>& w) { scenes::pyramid(w, base); }, steps, workers);
+    }
+    for (int n : {1000, 4000}) {
+        const std::string name = "drop-" + std::to_string(n);
+        workers_row<float>(
+            name.c_str(), [&](World<float>& w) { drop_boxes(w, n); }, steps, workers);
+        if (n == 4000)
+            workers_row<double>(
+                name.c_str(), [&](World<double>& w) { drop_boxes(w, n); }, steps, workers);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     bool quick = false;
+    unsigned workers = 0;
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--quick") == 0) quick = true;
-        else if (std::strcmp(argv[i], "--help") == 0) {
-            std::printf("usage: xeno_step_bench [--quick]\n");
+        else if (std::strcmp(argv[i], "--workers") == 0 && i + 1 < argc) {
+            const long n = std::strtol(argv[++i], nullptr, 10);
+            if (n < 2 || n > 256) {
+                std::fprintf(stderr, "xeno_step_bench: --workers takes 2 to 256\n");
+                return 2;
+            }
+            workers = static_cast<unsigned>(n);
+        } else if (std::strcmp(argv[i], "--help") == 0) {
+            std::printf("usage: xeno_step_bench [--quick] [--workers N]\n");
             return 0;
         } else {
             std::fprintf(stderr, "xeno_step_bench: unknown option '%s' (try --help)\n", argv[i]);
             return 2;
         }
+    }
+    if (workers > 0) {
+        workers_table(workers, quick);
+        return 0;
     }
     const int steps = quick ? 60 : 600;  // 10 s at 60 Hz
     std::printf("World::step, one thread, 60 Hz, %d steps each, default settings (soft step, 12 substeps), no sleeping\n", steps);

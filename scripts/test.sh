@@ -7,8 +7,11 @@
 #   2. clang++ with -fsanitize=address,undefined -fno-sanitize-recover=all (-O1, line tables),
 #      warnings as errors: every header alone, the unit and slow tests, and the libFuzzer targets
 #      (which add -fsanitize=fuzzer) run for a bounded time
-#   3. clang++ Release: the determinism program, whose scene hashes must equal g++'s
-#   4. the README's example compiled by the consumer projects: plain -I include,
+#   3. clang++ Release: the determinism program, whose scene hashes must equal g++'s (on one
+#      worker and on two)
+#   4. clang++ with -fsanitize=thread: the tests that step worlds on several threads
+#      (tests/robustness/parallel_test.cpp, header-only, one file)
+#   5. the README's example compiled by the consumer projects: plain -I include,
 #      add_subdirectory(xeno) and find_package(xeno CONFIG REQUIRED) after cmake --install, each
 #      header-only and in compiled mode (xeno::compiled), and in xeno::f32 with -Werror
 # One sanitizer build, with clang++, serves both the second compiler and the memory and UB checks
@@ -64,10 +67,22 @@ cmake -S "$root" -B "$build/clang" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_C
 cmake --build "$build/clang" -j "$jobs" --target xeno_determinism
 "$build/gcc/tests/xeno_determinism" >"$build/gcc/determinism.txt"
 "$build/clang/tests/xeno_determinism" >"$build/clang/determinism.txt"
-if ! diff "$build/gcc/determinism.txt" "$build/clang/determinism.txt"; then
+"$build/clang/tests/xeno_determinism" --workers 2 >"$build/clang/determinism-2.txt"
+if ! diff "$build/gcc/determinism.txt" "$build/clang/determinism.txt" ||
+   ! diff "$build/gcc/determinism.txt" "$build/clang/determinism-2.txt"; then
   echo "g++ and clang++ builds differ (docs/robustness.md, \"Determinism\")" >&2
   exit 1
 fi
+
+step "clang++ ThreadSanitizer: the tests that step on several workers"
+mkdir -p "$build/tsan"
+tsan=(clang++ -std=c++17 -O1 -g1 -fsanitize=thread -ffp-contract=off -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Werror
+      -I "$root/include" -I "$root/tests" -I "$root/examples")
+"${tsan[@]}" -c "$root/tests/test_main.cpp" -o "$build/tsan/test_main.o" &
+"${tsan[@]}" -c "$root/tests/robustness/parallel_test.cpp" -o "$build/tsan/parallel_test.o"
+wait $!
+"${tsan[@]}" "$build/tsan/test_main.o" "$build/tsan/parallel_test.o" -o "$build/tsan/xeno_parallel_tests"
+TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" "$build/tsan/xeno_parallel_tests"
 
 step "consumer projects compile the README's example"
 tests/consumers/run.sh "$build/consumers"

@@ -50,4 +50,5 @@
 #include "dynamics/world.hpp"
 #include "dynamics/world_draw.hpp"
 #include "shape/convex_hull.hpp"
+#include "task_system.hpp"
 #include "compiled.hpp"  // last: extern templates when XENO_COMPILED_LIB is defined

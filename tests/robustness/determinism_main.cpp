@@ -5,12 +5,16 @@
 // prints one line per run, `scene precision final-hash` (hash of every body's state, see
 // state_hash.hpp). Two processes must print the same lines (CTest, compare_runs.cmake), and so
 // must a g++ build and a clang++ build (scripts/test.sh diffs them): docs/robustness.md,
-// "Determinism". Runs in about two seconds in a Release build.
+// "Determinism". Runs in about two seconds in a Release build. --workers N steps on the world's
+// own pool of N threads, --shuffled N through a job system that cuts and orders the work at random
+// (docs/parallel.md): both must print the one-thread hashes.
 #include "robustness/state_hash.hpp"
+#include "support/shuffled_tasks.hpp"
 #include "scenes/all.hpp"
 
 #include <cinttypes>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace {
@@ -40,9 +44,15 @@ void loaded_plate(xeno::World<T>& world) {
                                   Vec3<T>{T(-3.5) + T(1.4) * T(i), T(0.6), T(-3.5) + T(1.4) * T(k)});
 }
 
+unsigned workers = 1;   // --workers N: the world's own pool
+unsigned shuffled = 0;  // --shuffled N: ShuffledTasks on N threads
+
 template <class T>
 std::uint64_t final_hash(const char* scene, int steps) {
     xeno::World<T> world;
+    xeno::test::ShuffledTasks tasks(shuffled);
+    if (shuffled > 0) world.set_task_system(&tasks);
+    else world.set_workers(workers);
     if (std::string(scene) == "loaded-plate") loaded_plate(world);
     else xeno::scenes::build<T>(scene, world);
     const T dt = world.settings().fixed_time_step;
@@ -52,7 +62,17 @@ std::uint64_t final_hash(const char* scene, int steps) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const std::string option = argv[i];
+        const auto value = static_cast<unsigned>(std::strtoul(argv[i + 1], nullptr, 10));
+        if (option == "--workers") workers = value;
+        else if (option == "--shuffled") shuffled = value;
+        else {
+            std::fprintf(stderr, "usage: xeno_determinism [--workers N | --shuffled N]\n");
+            return 2;
+        }
+    }
     for (const Run& run : runs) {
         std::printf("%s float %016" PRIx64 "\n", run.scene, final_hash<float>(run.scene, run.steps));
         std::printf("%s double %016" PRIx64 "\n", run.scene, final_hash<double>(run.scene, run.steps));

@@ -30,6 +30,7 @@
 #include "../collide/raycast.hpp"
 #include "../collide/shape_cast.hpp"
 #include "../contact/manifold.hpp"
+#include "../task_system.hpp"
 #include "body.hpp"
 #include "contact_solver.hpp"
 #include "wide_contact_solver.hpp"
@@ -39,6 +40,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -132,6 +134,12 @@ struct StepStats {
     std::size_t awake_bodies = 0;
     std::size_t colours = 0;            ///< colours the solved manifolds took (docs/solver.md, "Colours")
     std::size_t overflow_contacts = 0;  ///< manifolds no colour could take, solved one at a time
+    /// Wall-clock seconds of each stage (steady_clock), to see where a step's time goes and what
+    /// stays serial with several workers (docs/parallel.md).
+    struct Times {
+        double bounds = 0, broad = 0, narrow = 0, wake = 0, prepare = 0, solve = 0, finish = 0, sleep = 0, queries = 0,
+               events = 0;
+    } seconds;
 };
 
 /// A rigid-body world of scalar T.
@@ -334,6 +342,27 @@ public:
 
     /// Advances exactly one step of dt seconds (dt finite and > 0, else InvalidArgument).
     void step(T dt);
+
+    /// Steps on `workers` threads (the caller and workers − 1 of a ThreadPool the world owns); 1,
+    /// the default, steps on the caller alone. Any count gives the same bits (docs/parallel.md).
+    /// InvalidArgument unless 1 <= workers <= ThreadPool::max_workers.
+    void set_workers(unsigned workers) {
+        require_outside_callbacks("World::set_workers");
+        if (workers < 1 || workers > ThreadPool::max_workers)
+            detail::report_invalid("World::set_workers", "workers must be between 1 and 256", static_cast<double>(workers));
+        std::unique_ptr<ThreadPool> pool = workers > 1 ? std::make_unique<ThreadPool>(workers) : nullptr;
+        pool_ = std::move(pool);
+        tasks_ = pool_.get();
+    }
+    /// Steps through the game's own job system (not owned; it must outlive its use, or be
+    /// replaced first). nullptr steps on the caller alone. Drops a pool from set_workers.
+    void set_task_system(TaskSystem* tasks) {
+        require_outside_callbacks("World::set_task_system");
+        pool_.reset();
+        tasks_ = tasks;
+    }
+    /// Threads a step may use: 1 without a task system.
+    unsigned workers() const { return tasks_ != nullptr ? tasks_->workers() : 1u; }
     /// Advances by `seconds` of real time in fixed steps of settings().fixed_time_step, at most
     /// max_steps_per_update per call (time beyond is dropped so a slow frame cannot snowball).
     /// Returns the number of steps taken.
@@ -399,7 +428,21 @@ private:
                                           const char* where);
     BodyId create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
                             const BodyDef<T>& def);
+    /// The contacts of one pair into `next`, matched to last step's contacts_[old_begin, old_end).
     void collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, std::vector<Contact<T>>& next);
+    bool collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
+                       Contact<T>& out) const;
+    /// How far apart a pair's contacts may begin: the speculative distance plus what the two can
+    /// travel in the step.
+    T pair_margin(const Body<T>& a, const Body<T>& b, T dt) const {
+        return settings_.speculative_distance + (travel_speed(a) + travel_speed(b)) * dt;
+    }
+    enum class PairKind : std::uint8_t { dropped, kept, collided, parts };
+    /// What the narrow phase does with a broad-phase pair, and its contacts of last step.
+    struct PairWork {
+        std::uint32_t old_begin, old_end;  ///< in contacts_
+        PairKind kind;
+    };
     void prepare_joints(T h);
     BodyId id_of(std::uint32_t slot) const { return {slot, bodies_[slot].generation_}; }
     /// An awake dynamic body, or a kinematic body with a velocity: something that can push.
@@ -422,6 +465,10 @@ private:
     void wake_touched_islands(T dt);
     bool closes_within_step(const Contact<T>& c, T dt) const;
     void prepare(T dt);
+    detail::ContactConstraint<T> contact_row(std::uint32_t m, const detail::Softness<T>& soft,
+                                             const detail::Softness<T>& soft_static) const;
+    /// Fewest items a worker is handed per stage (task_system.hpp): about a few µs of work each.
+    static constexpr std::uint32_t bounds_range = 256, row_range = 64, integrate_range = 256, finish_range = 256;
     void solve(T dt);
     void thin_crowded_pairs();
     void build_islands();
@@ -490,6 +537,10 @@ private:
     T last_substep_{};  ///< s: the last step's substep, for joint_reaction
     // Scratch kept between steps so a settled step allocates nothing.
     std::vector<Contact<T>> next_contacts_;          ///< narrow phase output, swapped with contacts_
+    std::vector<PairWork> pair_work_;                ///< per broad-phase pair (narrow phase)
+    std::vector<std::uint32_t> row_contacts_;        ///< per contact row: its contact (prepare)
+    std::vector<std::uint32_t> collide_jobs_;        ///< several workers: the pairs of kind collided, in pair order
+    std::vector<Contact<T>> job_contacts_;           ///< several workers: the contact of each of collide_jobs_
     std::vector<std::uint32_t> contact_start_;       ///< per slot: the end of its run in contact_list_ (index_contacts)
     std::vector<std::uint32_t> contact_list_;        ///< contact indices grouped by body slot
     std::vector<std::uint32_t> island_parent_;       ///< union–find parents per slot (wake, sleep)
@@ -498,6 +549,8 @@ private:
     std::vector<std::uint32_t> pair_degree_;         ///< per slot: broad-phase pairs (crowd thinning)
     std::vector<std::uint64_t> crowd_histogram_;     ///< pairs by crowd size (crowd thinning)
     std::vector<ContactEvent<T>> delivered_events_;  ///< the listener's copy of events_
+    TaskSystem* tasks_ = nullptr;                    ///< where a step's parallel stages run (nullptr: the stepping thread)
+    std::unique_ptr<ThreadPool> pool_;               ///< the world's own pool (set_workers)
     bool in_filter_ = false;                         ///< the contact filter is running: mutating calls are rejected
     bool in_listener_ = false;                       ///< the contact listener is running: step() and update() are rejected
 };
@@ -705,9 +758,17 @@ void World<T>::step(T dt) {
     detail::require_positive(dt, "World::step", "dt");
     detail::require_at_most(dt, detail::max_time_step<T>(), "World::step", "dt", " s");
     stats_ = {};
+    using clock = std::chrono::steady_clock;
+    clock::time_point mark = clock::now();
+    auto lap = [&](double& seconds) {
+        const clock::time_point now = clock::now();
+        seconds = std::chrono::duration<double>(now - mark).count();
+        mark = now;
+    };
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
         if (bodies_[i].alive_) previous_pose_[i] = bodies_[i].transform();
     update_bounds(dt);
+    lap(stats_.seconds.bounds);
     switch (settings_.broad_phase) {
         case BroadPhaseKind::brute_force: brute_force_pairs(bounds_, pairs_); break;
         case BroadPhaseKind::sweep_and_prune: sweep_.find_pairs(bounds_, pairs_); break;
@@ -715,14 +776,23 @@ void World<T>::step(T dt) {
     }
     stats_.broad_pairs = pairs_.size();
     thin_crowded_pairs();
+    lap(stats_.seconds.broad);
     narrow_phase(dt);
+    lap(stats_.seconds.narrow);
     wake_touched_islands(dt);
+    lap(stats_.seconds.wake);
     prepare(dt);
+    lap(stats_.seconds.prepare);
     solve(dt);
+    lap(stats_.seconds.solve);
     finish();
+    lap(stats_.seconds.finish);
     update_sleep(dt);
+    lap(stats_.seconds.sleep);
     update_query_tree();
+    lap(stats_.seconds.queries);
     report_events();
+    lap(stats_.seconds.events);
 }
 
 /// Bounds a step's work when more pairs overlap than max_contact_pairs (thousands of bodies
@@ -837,14 +907,16 @@ template <class T>
 void World<T>::update_bounds(T dt) {
     // Fattened by the speculative distance and by the distance the body can travel this step,
     // so contacts exist before the bodies meet.
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-        Body<T>& b = bodies_[i];
-        if (!b.alive_ || !b.enabled_) continue;  // a disabled body's box stays empty
-        if (b.type_ == BodyType::static_body && !b.moved_) continue;
-        const T reach = settings_.speculative_distance + travel_speed(b) * dt;
-        bounds_[i] = b.world_bounds().expanded(reach);
-        b.moved_ = false;
-    }
+    parallel_for(tasks_, static_cast<std::uint32_t>(bodies_.size()), bounds_range, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t i = begin; i < end; ++i) {
+            Body<T>& b = bodies_[i];
+            if (!b.alive_ || !b.enabled_) continue;  // a disabled body's box stays empty
+            if (b.type_ == BodyType::static_body && !b.moved_) continue;
+            const T reach = settings_.speculative_distance + travel_speed(b) * dt;
+            bounds_[i] = b.world_bounds().expanded(reach);
+            b.moved_ = false;
+        }
+    });
 }
 
 // The queries' tree holds each body's current box: after the step, every body whose pose changed
@@ -873,21 +945,29 @@ void World<T>::rebuild_query_tree() {
     for (AabbTree<T>& tree : query_trees_) tree.rebuild();
 }
 
+// Three passes so that the costly middle one can run on several threads with the same result:
+// (1) in pair order, which pairs are wanted (the user's filter runs here, on the stepping
+// thread), which need the narrow phase, and last step's contacts of each pair (a merge-join, both
+// lists sorted by body pair); (2) each pair without a compound side, independently, through the
+// task system: its manifold, matched to last step's points; (3) in pair order, the new contact
+// list and the events of contacts that ended. A pair with a compound side collides in pass 3 (it
+// may give a contact per pair of parts). With one worker pass 2 is skipped and pass 3 collides
+// every pair itself: the same calls on the same inputs, without a contact per pair kept apart.
 template <class T>
 void World<T>::narrow_phase(T dt) {
-    std::vector<Contact<T>>& next = next_contacts_;
-    next.clear();
-    next.reserve(pairs_.size());  // most pairs give one contact: no copies while growing (a crowd's first step)
+    const bool parallel = tasks_ != nullptr && tasks_->workers() > 1;
+    pair_work_.resize(pairs_.size());
+    collide_jobs_.clear();
     std::size_t old = 0;
-    for (const ProxyPair& pair : pairs_) {
-        // Merge-join with last step's contacts (both sorted by body pair, then by parts): those
-        // before this pair are not carried on and have ended.
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+        const ProxyPair& pair = pairs_[k];
+        PairWork& work = pair_work_[k];
         while (old < contacts_.size() &&
                (contacts_[old].a.index < pair.a || (contacts_[old].a.index == pair.a && contacts_[old].b.index < pair.b)))
-            end_contact(contacts_[old++]);
-        std::size_t old_end = old;
-        while (old_end < contacts_.size() && contacts_[old_end].a.index == pair.a && contacts_[old_end].b.index == pair.b)
-            ++old_end;
+            ++old;
+        work.old_begin = static_cast<std::uint32_t>(old);
+        while (old < contacts_.size() && contacts_[old].a.index == pair.a && contacts_[old].b.index == pair.b) ++old;
+        work.old_end = static_cast<std::uint32_t>(old);
         const Body<T>& a = bodies_[pair.a];
         const Body<T>& b = bodies_[pair.b];
         // (A free slot's box is empty and pairs with nothing; checked anyway, so a broad phase
@@ -897,20 +977,52 @@ void World<T>::narrow_phase(T dt) {
                             (b.layer_ & a.mask_) &&
                             !std::binary_search(unconnected_pairs_.begin(), unconnected_pairs_.end(), pair_key(pair.a, pair.b)) &&
                             filter_allows(pair.a, pair.b);
-        if (!wanted) {
-            for (; old < old_end; ++old) end_contact(contacts_[old]);
-            continue;
+        // Both asleep (or asleep on static): the contacts stay as they were.
+        work.kind = !wanted                      ? PairKind::dropped
+                    : !active(a) && !active(b)   ? PairKind::kept
+                    : a.compound_ || b.compound_ ? PairKind::parts
+                                                 : PairKind::collided;
+        if (parallel && work.kind == PairKind::collided) collide_jobs_.push_back(static_cast<std::uint32_t>(k));
+    }
+    job_contacts_.resize(collide_jobs_.size());
+    parallel_for(tasks_, static_cast<std::uint32_t>(collide_jobs_.size()), 16u, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t j = begin; j < end; ++j) {
+            const std::uint32_t k = collide_jobs_[j];
+            const PairWork& work = pair_work_[k];
+            const Contact<T>* had =
+                work.old_begin < work.old_end && contacts_[work.old_begin].child_a == 0 && contacts_[work.old_begin].child_b == 0
+                    ? &contacts_[work.old_begin]
+                    : nullptr;
+            job_contacts_[j].manifold.count = 0;
+            collide_parts(pairs_[k], 0, 0, pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), had, job_contacts_[j]);
         }
-        if (!active(a) && !active(b)) {  // both asleep (or asleep on static): keep the contacts as they were
-            for (; old < old_end; ++old) {
+    });
+
+    std::vector<Contact<T>>& next = next_contacts_;
+    next.clear();
+    next.reserve(pairs_.size());  // most pairs give one contact: no copies while growing (a crowd's first step)
+    old = 0;
+    std::size_t job = 0;
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+        const PairWork& work = pair_work_[k];
+        while (old < work.old_begin) end_contact(contacts_[old++]);  // no pair this step: ended
+        if (work.kind == PairKind::kept) {
+            for (; old < work.old_end; ++old) {
                 next.push_back(contacts_[old]);
                 next.back().was_touching = next.back().touching;
             }
-            continue;
+        } else if (work.kind == PairKind::parts || (work.kind == PairKind::collided && !parallel)) {
+            collide_pair(pairs_[k], pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), old, work.old_end, next);
+            old = work.old_end;
+        } else if (work.kind == PairKind::collided) {
+            // Pass 2's contact took over last step's contact of parts (0, 0), if there was one.
+            const Contact<T>& fresh = job_contacts_[job++];
+            const bool had = old < work.old_end && contacts_[old].child_a == 0 && contacts_[old].child_b == 0;
+            if (had && fresh.manifold.count == 0) end_contact(contacts_[old]);
+            if (had) ++old;
+            if (fresh.manifold.count > 0) next.push_back(fresh);
         }
-        const T margin = settings_.speculative_distance + (travel_speed(a) + travel_speed(b)) * dt;
-        collide_pair(pair, margin, old, old_end, next);
-        old = old_end;
+        for (; old < work.old_end; ++old) end_contact(contacts_[old]);  // dropped, or parts that no longer exist
     }
     while (old < contacts_.size()) end_contact(contacts_[old++]);
     contacts_.swap(next);
@@ -942,45 +1054,55 @@ void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_beg
                             std::vector<Contact<T>>& next) {
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
-    const bool parts = a.compound_ || b.compound_;
     std::size_t old = old_begin;
     for (std::uint32_t ca = 0; ca < a.child_count(); ++ca) {
-        const Transform<T> pose_a = a.child_transform(ca);
-        const Aabb<T> box_a = parts ? world_bounds(a.child_shape(ca), pose_a).expanded(margin) : Aabb<T>{};
         for (std::uint32_t cb = 0; cb < b.child_count(); ++cb) {
             // Last step's contact of these two parts, if any (both lists are in part order).
             while (old < old_end &&
                    (contacts_[old].child_a < ca || (contacts_[old].child_a == ca && contacts_[old].child_b < cb)))
                 end_contact(contacts_[old++]);
             const bool had = old < old_end && contacts_[old].child_a == ca && contacts_[old].child_b == cb;
-            const Transform<T> pose_b = b.child_transform(cb);
-            ContactManifold<T> fresh;
-            if (!parts || overlaps(box_a, world_bounds(b.child_shape(cb), pose_b)))
-                fresh = generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin, settings_.linear_slop);
-            if (fresh.count == 0) {  // apart: the contact (if any) ends
-                if (had) end_contact(contacts_[old++]);
-                continue;
-            }
             Contact<T> c;
-            if (had) c = contacts_[old++];
-            c.was_touching = had && c.touching;
-            c.a = id_of(pair.a);
-            c.b = id_of(pair.b);
-            c.child_a = ca;
-            c.child_b = cb;
-            c.friction = combined_friction(a.material_, b.material_);
-            c.restitution = combined_restitution(a.material_, b.material_);
-            c.sensor = a.sensor_ || b.sensor_;
-            if (fresh.count == 1 && had && c.manifold.count > 0)
-                c.manifold.merge_single(fresh.points[0], fresh.normal, a.transform(), b.transform(),
-                                        settings_.contact_match_distance, margin);
-            else c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
-            c.touching = c.manifold.touching();
-            for (int i = 0; i < c.manifold.count; ++i) c.manifold.points[static_cast<std::size_t>(i)].step_impulse = T(0);
-            next.push_back(c);
+            if (collide_parts(pair, ca, cb, margin, had ? &contacts_[old] : nullptr, c)) next.push_back(c);
+            else if (had) end_contact(contacts_[old]);  // apart: the contact ends
+            if (had) ++old;
         }
     }
     for (; old < old_end; ++old) end_contact(contacts_[old]);
+}
+
+/// The contact of parts ca and cb of a pair into `out`, its points matched to `had` (last step's
+/// contact of those parts, or nullptr); false when they are apart (out is left as it was).
+template <class T>
+bool World<T>::collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
+                             Contact<T>& out) const {
+    const Body<T>& a = bodies_[pair.a];
+    const Body<T>& b = bodies_[pair.b];
+    const Transform<T> pose_a = a.child_transform(ca), pose_b = b.child_transform(cb);
+    if (a.compound_ || b.compound_) {  // parts whose boxes are apart need no narrow phase
+        if (!overlaps(world_bounds(a.child_shape(ca), pose_a).expanded(margin), world_bounds(b.child_shape(cb), pose_b)))
+            return false;
+    }
+    const ContactManifold<T> fresh =
+        generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin, settings_.linear_slop);
+    if (fresh.count == 0) return false;
+    Contact<T>& c = out;
+    c = had ? *had : Contact<T>{};
+    c.was_touching = had && had->touching;
+    c.a = id_of(pair.a);
+    c.b = id_of(pair.b);
+    c.child_a = ca;
+    c.child_b = cb;
+    c.friction = combined_friction(a.material_, b.material_);
+    c.restitution = combined_restitution(a.material_, b.material_);
+    c.sensor = a.sensor_ || b.sensor_;
+    if (fresh.count == 1 && had && c.manifold.count > 0)
+        c.manifold.merge_single(fresh.points[0], fresh.normal, a.transform(), b.transform(), settings_.contact_match_distance,
+                                margin);
+    else c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
+    c.touching = c.manifold.touching();
+    for (int i = 0; i < c.manifold.count; ++i) c.manifold.points[static_cast<std::size_t>(i)].step_impulse = T(0);
+    return true;
 }
 
 template <class T>
@@ -1104,91 +1226,109 @@ void World<T>::prepare(T dt) {
     prepare_joints(h);
 
     // Contact rows.
-    constraints_.clear();
-    constraints_.reserve(contacts_.size());
     const T contact_hertz = std::min(settings_.contact_hertz, T(0.125) / h);
     using detail::Softness;
     const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
     const Softness<T> soft_static = Softness<T>::make(std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h),
                                                       settings_.contact_damping_ratio, h);
+    // Which contacts get a row (in contact order), then the rows, independently of each other.
+    row_contacts_.clear();
     for (std::uint32_t m = 0; m < contacts_.size(); ++m) {
         const Contact<T>& contact = contacts_[m];
         if (contact.sensor || contact.manifold.count == 0) continue;
-        const Body<T>& a = bodies_[contact.a.index];
-        const Body<T>& b = bodies_[contact.b.index];
-        detail::ContactConstraint<T> c;
-        c.a = solver_index_[contact.a.index];
-        c.b = solver_index_[contact.b.index];
-        if (c.a == 0 && c.b == 0) continue;  // both asleep or static
+        const std::uint32_t ia = solver_index_[contact.a.index], ib = solver_index_[contact.b.index];
+        if (ia == 0 && ib == 0) continue;  // both asleep or static
         // A sleeper left asleep by wake_touched_islands cannot be reached this step; solving
         // against it as a static stand-in would stop the mover dead (issue 12), so skip the row.
-        if ((c.a == 0 && a.type_ == BodyType::dynamic) || (c.b == 0 && b.type_ == BodyType::dynamic)) continue;
-        const detail::SolverMass<T>& sa = solver_masses_[c.a];
-        const detail::SolverMass<T>& sb = solver_masses_[c.b];
-        const detail::SolverBody<T>& va = solver_bodies_[c.a];
-        const detail::SolverBody<T>& vb = solver_bodies_[c.b];
-        c.manifold = m;
-        c.normal = contact.manifold.normal;
-        c.t1 = any_perpendicular(c.normal);
-        c.t2 = cross(c.normal, c.t1);
-        c.friction = contact.friction;
-        c.restitution = contact.restitution;
-        c.softness = (a.type_ == BodyType::dynamic && b.type_ == BodyType::dynamic) ? soft : soft_static;
-        if (settings_.solver == SolverMode::baumgarte) c.softness = detail::Softness<T>{};
-        c.count = contact.manifold.count;
-        const Vec3<T> xa = a.position_, xb = b.position_;
-        Vec3<T> centre{};
-        for (int i = 0; i < c.count; ++i) {
-            const ContactPoint<T>& cp = contact.manifold.points[static_cast<std::size_t>(i)];
-            detail::ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
-            const Vec3<T> pa = a.world_point(cp.local_a), pb = b.world_point(cp.local_b);
-            const Vec3<T> mid = (pa + pb) * T(0.5);
-            centre += mid;
-            p.r_a = mid - xa;
-            p.r_b = mid - xb;
-            const T separation = dot(pb - pa, c.normal);
-            p.adjusted_separation = separation - dot(p.r_b - p.r_a, c.normal);
-            const Vec3<T> rna = cross(p.r_a, c.normal), rnb = cross(p.r_b, c.normal);
-            const T k = sa.inv_mass + sb.inv_mass + dot(rna, sa.inv_inertia * rna) + dot(rnb, sb.inv_inertia * rnb);
-            p.normal_mass = k > T(0) ? T(1) / k : T(0);
-            p.normal_impulse = settings_.warm_starting ? cp.normal_impulse : T(0);
-            p.max_normal_impulse = T(0);
-            p.relative_velocity = dot(vb.velocity_at(p.r_b) - va.velocity_at(p.r_a), c.normal);
-        }
-        centre /= static_cast<T>(c.count);
-        c.rc_a = centre - xa;
-        c.rc_b = centre - xb;
-        T lever = T(0);
-        for (int i = 0; i < c.count; ++i) {
-            const Vec3<T> off = (c.points[static_cast<std::size_t>(i)].r_a + xa) - centre;
-            lever += length(off - c.normal * dot(off, c.normal));
-        }
-        c.twist_lever = lever / static_cast<T>(c.count);
-        // The 2×2 tangent effective mass K and its inverse.
-        const Vec3<T> a1 = cross(c.rc_a, c.t1), a2 = cross(c.rc_a, c.t2), b1 = cross(c.rc_b, c.t1), b2 = cross(c.rc_b, c.t2);
-        const T base = sa.inv_mass + sb.inv_mass;
-        const T k11 = base + dot(a1, sa.inv_inertia * a1) + dot(b1, sb.inv_inertia * b1);
-        const T k12 = dot(a1, sa.inv_inertia * a2) + dot(b1, sb.inv_inertia * b2);
-        const T k22 = base + dot(a2, sa.inv_inertia * a2) + dot(b2, sb.inv_inertia * b2);
-        const T det = k11 * k22 - k12 * k12;
-        if (det > T(0)) {
-            c.k11 = k22 / det;
-            c.k12 = -k12 / det;
-            c.k22 = k11 / det;
-        }
-        const T kt = dot(c.normal, (sa.inv_inertia + sb.inv_inertia) * c.normal);
-        c.twist_mass = kt > T(0) ? T(1) / kt : T(0);
-        if (settings_.warm_starting) {
-            c.friction_1 = dot(contact.manifold.friction_impulse, c.t1);
-            c.friction_2 = dot(contact.manifold.friction_impulse, c.t2);
-            c.twist_impulse = contact.manifold.twist_impulse;
-        }
-        constraints_.push_back(c);
-        stats_.contact_points += static_cast<std::size_t>(c.count);
+        if ((ia == 0 && bodies_[contact.a.index].type_ == BodyType::dynamic) ||
+            (ib == 0 && bodies_[contact.b.index].type_ == BodyType::dynamic))
+            continue;
+        row_contacts_.push_back(m);
+        stats_.contact_points += static_cast<std::size_t>(contact.manifold.count);
     }
-    wide_rows_.build(constraints_, solver_masses_);
+    constraints_.resize(row_contacts_.size());
+    parallel_for(tasks_, static_cast<std::uint32_t>(row_contacts_.size()), row_range,
+                 [&](std::uint32_t begin, std::uint32_t end) {
+                     for (std::uint32_t r = begin; r < end; ++r)
+                         constraints_[r] = contact_row(row_contacts_[r], soft, soft_static);
+                 });
+    wide_rows_.build(constraints_, solver_masses_, tasks_);
     stats_.colours = wide_rows_.colours_used();
     stats_.overflow_contacts = wide_rows_.overflow_rows();
+}
+
+/// The contact row of contacts_[m] (prepare): anchors, effective masses, softness and the
+/// approach speed for restitution, from the bodies' state at the start of the step.
+template <class T>
+detail::ContactConstraint<T> World<T>::contact_row(std::uint32_t m, const detail::Softness<T>& soft,
+                                                   const detail::Softness<T>& soft_static) const {
+    const Contact<T>& contact = contacts_[m];
+    const Body<T>& a = bodies_[contact.a.index];
+    const Body<T>& b = bodies_[contact.b.index];
+    detail::ContactConstraint<T> c;
+    c.a = solver_index_[contact.a.index];
+    c.b = solver_index_[contact.b.index];
+    const detail::SolverMass<T>& sa = solver_masses_[c.a];
+    const detail::SolverMass<T>& sb = solver_masses_[c.b];
+    const detail::SolverBody<T>& va = solver_bodies_[c.a];
+    const detail::SolverBody<T>& vb = solver_bodies_[c.b];
+    c.manifold = m;
+    c.normal = contact.manifold.normal;
+    c.t1 = any_perpendicular(c.normal);
+    c.t2 = cross(c.normal, c.t1);
+    c.friction = contact.friction;
+    c.restitution = contact.restitution;
+    c.softness = (a.type_ == BodyType::dynamic && b.type_ == BodyType::dynamic) ? soft : soft_static;
+    if (settings_.solver == SolverMode::baumgarte) c.softness = detail::Softness<T>{};
+    c.count = contact.manifold.count;
+    const Vec3<T> xa = a.position_, xb = b.position_;
+    Vec3<T> centre{};
+    for (int i = 0; i < c.count; ++i) {
+        const ContactPoint<T>& cp = contact.manifold.points[static_cast<std::size_t>(i)];
+        detail::ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
+        const Vec3<T> pa = a.world_point(cp.local_a), pb = b.world_point(cp.local_b);
+        const Vec3<T> mid = (pa + pb) * T(0.5);
+        centre += mid;
+        p.r_a = mid - xa;
+        p.r_b = mid - xb;
+        const T separation = dot(pb - pa, c.normal);
+        p.adjusted_separation = separation - dot(p.r_b - p.r_a, c.normal);
+        const Vec3<T> rna = cross(p.r_a, c.normal), rnb = cross(p.r_b, c.normal);
+        const T k = sa.inv_mass + sb.inv_mass + dot(rna, sa.inv_inertia * rna) + dot(rnb, sb.inv_inertia * rnb);
+        p.normal_mass = k > T(0) ? T(1) / k : T(0);
+        p.normal_impulse = settings_.warm_starting ? cp.normal_impulse : T(0);
+        p.max_normal_impulse = T(0);
+        p.relative_velocity = dot(vb.velocity_at(p.r_b) - va.velocity_at(p.r_a), c.normal);
+    }
+    centre /= static_cast<T>(c.count);
+    c.rc_a = centre - xa;
+    c.rc_b = centre - xb;
+    T lever = T(0);
+    for (int i = 0; i < c.count; ++i) {
+        const Vec3<T> off = (c.points[static_cast<std::size_t>(i)].r_a + xa) - centre;
+        lever += length(off - c.normal * dot(off, c.normal));
+    }
+    c.twist_lever = lever / static_cast<T>(c.count);
+    // The 2×2 tangent effective mass K and its inverse.
+    const Vec3<T> a1 = cross(c.rc_a, c.t1), a2 = cross(c.rc_a, c.t2), b1 = cross(c.rc_b, c.t1), b2 = cross(c.rc_b, c.t2);
+    const T base = sa.inv_mass + sb.inv_mass;
+    const T k11 = base + dot(a1, sa.inv_inertia * a1) + dot(b1, sb.inv_inertia * b1);
+    const T k12 = dot(a1, sa.inv_inertia * a2) + dot(b1, sb.inv_inertia * b2);
+    const T k22 = base + dot(a2, sa.inv_inertia * a2) + dot(b2, sb.inv_inertia * b2);
+    const T det = k11 * k22 - k12 * k12;
+    if (det > T(0)) {
+        c.k11 = k22 / det;
+        c.k12 = -k12 / det;
+        c.k22 = k11 / det;
+    }
+    const T kt = dot(c.normal, (sa.inv_inertia + sb.inv_inertia) * c.normal);
+    c.twist_mass = kt > T(0) ? T(1) / kt : T(0);
+    if (settings_.warm_starting) {
+        c.friction_1 = dot(contact.manifold.friction_impulse, c.t1);
+        c.friction_2 = dot(contact.manifold.friction_impulse, c.t2);
+        c.twist_impulse = contact.manifold.twist_impulse;
+    }
+    return c;
 }
 
 /// What integrating body `b` (solver state `s`) over substeps of h needs, constant for the step:
@@ -1218,65 +1358,77 @@ void World<T>::solve(T dt) {
     detail::SolvePass<T> pass{
         T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
     const T max_rotation = settings_.max_rotation_per_step / static_cast<T>(substeps);
+    const auto movers = static_cast<std::uint32_t>(solver_bodies_.size() - 1);
     for (int sub = 0; sub < substeps; ++sub) {
-        for (std::size_t i = 1; i < solver_bodies_.size(); ++i)
-            if (integration_[i].dynamic)
-                detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
+        parallel_for(tasks_, movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
+            for (std::uint32_t i = begin + 1; i <= end; ++i)
+                if (integration_[i].dynamic)
+                    detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
+        });
         if (settings_.warm_starting) {
             for (const detail::JointConstraint<T>& c : joint_rows_)
                 detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
-            wide_rows_.warm_start(solver_bodies_);
+            wide_rows_.warm_start(solver_bodies_, tasks_);
         }
         pass.use_bias = true;
         for (int it = 0; it < settings_.velocity_iterations; ++it) {
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
                 for (const detail::JointConstraint<T>& c : joint_rows_)
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
-            wide_rows_.solve(solver_bodies_, pass);
+            wide_rows_.solve(solver_bodies_, pass, tasks_);
         }
-        for (std::size_t i = 1; i < solver_bodies_.size(); ++i)
-            detail::integrate_position(solver_bodies_[i], h, integration_[i].max_speed, max_rotation);
+        parallel_for(tasks_, movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
+            for (std::uint32_t i = begin + 1; i <= end; ++i)
+                detail::integrate_position(solver_bodies_[i], h, integration_[i].max_speed, max_rotation);
+        });
         pass.use_bias = false;
         for (int it = 0; it < settings_.relax_iterations; ++it) {
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
                 for (const detail::JointConstraint<T>& c : joint_rows_)
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], false, h);
-            wide_rows_.solve(solver_bodies_, pass);
+            wide_rows_.solve(solver_bodies_, pass, tasks_);
         }
         solver_bodies_[0] = detail::SolverBody<T>{};
         wide_rows_.accumulate_step_impulses();
     }
-    wide_rows_.unpack(constraints_);
+    wide_rows_.unpack(constraints_, tasks_);
     detail::apply_restitution(constraints_, solver_bodies_, solver_masses_, settings_.restitution_threshold);
 }
 
 template <class T>
 void World<T>::finish() {
     discard_overflowed_solve();
-    for (const detail::ContactConstraint<T>& c : constraints_) {
-        Manifold<T>& m = contacts_[c.manifold].manifold;
-        for (int i = 0; i < c.count; ++i) {
-            m.points[static_cast<std::size_t>(i)].normal_impulse = c.points[static_cast<std::size_t>(i)].normal_impulse;
-            m.points[static_cast<std::size_t>(i)].max_normal_impulse = c.points[static_cast<std::size_t>(i)].max_normal_impulse;
-            m.points[static_cast<std::size_t>(i)].step_impulse = c.points[static_cast<std::size_t>(i)].step_impulse;
+    parallel_for(tasks_, static_cast<std::uint32_t>(constraints_.size()), finish_range,
+                 [&](std::uint32_t begin, std::uint32_t end) {
+                     for (std::uint32_t r = begin; r < end; ++r) {
+                         const detail::ContactConstraint<T>& c = constraints_[r];
+                         Manifold<T>& m = contacts_[c.manifold].manifold;
+                         for (int i = 0; i < c.count; ++i) {
+                             const detail::ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
+                             m.points[static_cast<std::size_t>(i)].normal_impulse = p.normal_impulse;
+                             m.points[static_cast<std::size_t>(i)].max_normal_impulse = p.max_normal_impulse;
+                             m.points[static_cast<std::size_t>(i)].step_impulse = p.step_impulse;
+                             // A speculative contact that pushed this step touched: the impact happens in the
+                             // step that stops the bodies, before they overlap.
+                             if (p.step_impulse > T(0)) contacts_[c.manifold].touching = true;
+                         }
+                         m.friction_impulse = c.t1 * c.friction_1 + c.t2 * c.friction_2;
+                         m.twist_impulse = c.twist_impulse;
+                     }
+                 });
+    const auto movers = static_cast<std::uint32_t>(solver_bodies_.size() - 1);
+    parallel_for(tasks_, movers, finish_range, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t i = begin + 1; i <= end; ++i) {
+            Body<T>& b = bodies_[solver_slot_[i]];
+            const detail::SolverBody<T>& s = solver_bodies_[i];
+            b.position_ += s.dp;
+            b.orientation_ = normalized(s.dq * b.orientation_);
+            b.linear_velocity_ = s.v;
+            b.angular_velocity_ = s.w;
+            b.force_ = Vec3<T>::zero();
+            b.torque_ = Vec3<T>::zero();
         }
-        m.friction_impulse = c.t1 * c.friction_1 + c.t2 * c.friction_2;
-        m.twist_impulse = c.twist_impulse;
-        // A speculative contact that pushed this step touched: the impact happens in the step
-        // that stops the bodies, before they overlap.
-        for (int i = 0; i < c.count; ++i)
-            if (c.points[static_cast<std::size_t>(i)].step_impulse > T(0)) contacts_[c.manifold].touching = true;
-    }
-    for (std::size_t i = 1; i < solver_bodies_.size(); ++i) {
-        Body<T>& b = bodies_[solver_slot_[i]];
-        const detail::SolverBody<T>& s = solver_bodies_[i];
-        b.position_ += s.dp;
-        b.orientation_ = normalized(s.dq * b.orientation_);
-        b.linear_velocity_ = s.v;
-        b.angular_velocity_ = s.w;
-        b.force_ = Vec3<T>::zero();
-        b.torque_ = Vec3<T>::zero();
-    }
+    });
 }
 
 /// The last line of defence against the range of T (docs/robustness.md, "Range of T"): inputs

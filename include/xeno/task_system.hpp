@@ -1,0 +1,170 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// How xeno spreads a step over threads (docs/parallel.md). The world never starts a thread of its
+// own accord: it hands ranges of independent work ("these 4,000 pairs", "the groups of colour 3")
+// to a TaskSystem and waits. A game plugs in its own job system by implementing parallel_for (the
+// shape of Box2D v3's enqueue/finish callbacks and Jolt's JobSystem, reduced to the one call the
+// world needs); ThreadPool is the default, a few std::threads that spin briefly between the many
+// short ranges of a step and sleep between steps.
+//
+// Every range the world hands out writes only to its own items, so the result does not depend on
+// how the ranges are cut, in what order they run or on which thread: a step gives the same bits
+// for any worker count (tests/robustness/parallel_test.cpp).
+#pragma once
+
+#include "error.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace xeno {
+
+/// A range function: run(context, begin, end) processes items [begin, end).
+struct RangeTask {
+    void (*run)(const void* context, std::uint32_t begin, std::uint32_t end);
+    const void* context;
+    void operator()(std::uint32_t begin, std::uint32_t end) const { run(context, begin, end); }
+};
+
+/// What the world needs from a job system.
+class TaskSystem {
+public:
+    virtual ~TaskSystem() = default;
+    /// Calls task on ranges that cover [0, count) without overlapping, from any threads in any
+    /// order, and returns when all have finished. min_range is a hint: ranges shorter than it
+    /// cost more to hand out than they save (so the default pool runs count <= min_range on the
+    /// caller), but any cut gives the same result. count > 0. Called only from the thread
+    /// stepping the world, never from inside a task.
+    virtual void parallel_for(std::uint32_t count, std::uint32_t min_range, RangeTask task) = 0;
+    /// Threads that may run ranges at once, the caller included (the world sizes ranges by it).
+    virtual unsigned workers() const = 0;
+};
+
+/// Runs f(begin, end) over [0, count) through `tasks`, or on the caller when there is no task
+/// system or it has one worker.
+template <class F>
+void parallel_for(TaskSystem* tasks, std::uint32_t count, std::uint32_t min_range, const F& f) {
+    if (count == 0) return;
+    if (tasks == nullptr || tasks->workers() <= 1) {
+        f(std::uint32_t(0), count);
+        return;
+    }
+    const RangeTask task{[](const void* c, std::uint32_t b, std::uint32_t e) { (*static_cast<const F*>(c))(b, e); }, &f};
+    tasks->parallel_for(count, std::max<std::uint32_t>(min_range, 1u), task);
+}
+
+/// The default task system: workers − 1 std::threads plus the caller. A parallel_for cuts the
+/// work into two to four ranges per worker (so a worker delayed by the OS is covered by the others)
+/// and every thread claims ranges from one atomic counter. Between calls the threads spin for a
+/// few microseconds (a step issues hundreds of short calls, one per colour and substep) and then
+/// sleep on a condition variable, so an idle pool costs nothing.
+class ThreadPool final : public TaskSystem {
+public:
+    static constexpr unsigned max_workers = 256;
+
+    /// InvalidArgument unless 1 <= workers <= max_workers.
+    explicit ThreadPool(unsigned workers) : workers_(workers) {
+        if (workers < 1 || workers > max_workers)
+            detail::report_invalid("ThreadPool", "workers must be between 1 and 256", static_cast<double>(workers));
+        threads_.reserve(workers - 1);
+        for (unsigned i = 1; i < workers; ++i) threads_.emplace_back([this] { work(); });
+    }
+    ThreadPool(const ThreadPool&) = delete;
+    ThreadPool& operator=(const ThreadPool&) = delete;
+    ~ThreadPool() override {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            stopping_ = true;
+        }
+        wake_.notify_all();
+        for (std::thread& t : threads_) t.join();
+    }
+
+    unsigned workers() const override { return workers_; }
+
+    void parallel_for(std::uint32_t count, std::uint32_t min_range, RangeTask task) override {
+        if (count <= min_range || workers_ == 1) {
+            task(0, count);
+            return;
+        }
+        // Two to four ranges per worker: 75 items in ranges of 32 would be 3 ranges, and one of
+        // two workers would do two thirds; one range each leaves the caller waiting whenever the
+        // OS pauses the other worker.
+        const std::uint32_t ranges = std::min<std::uint32_t>({count, 4u * workers_, std::max(2u * workers_, count / min_range)});
+        task_ = task;
+        count_ = count;
+        ranges_ = ranges;
+        done_.store(0, std::memory_order_relaxed);
+        // Publishing the new generation with a zero claim count opens the job; a thread can
+        // only claim a range of the generation it saw, so a late thread never runs a stale job.
+        const std::uint64_t generation = (state_.load(std::memory_order_relaxed) >> 32) + 1;
+        state_.store(generation << 32, std::memory_order_release);
+        {
+            std::lock_guard<std::mutex> lock(mutex_);  // orders the store before a sleeper's check
+        }
+        wake_.notify_all();
+        run_ranges(generation);
+        while (done_.load(std::memory_order_acquire) != ranges) std::this_thread::yield();
+        // Closed: a thread still holding this generation's state fails its claim, so the job
+        // fields can be rewritten for the next call.
+        state_.store(generation << 32 | closed, std::memory_order_release);
+    }
+
+private:
+    static constexpr std::uint64_t closed = 0xffffffffu;
+
+    /// Claims and runs ranges of `generation` until none is left; counts the ones it ran.
+    void run_ranges(std::uint64_t generation) {
+        std::uint64_t state = state_.load(std::memory_order_acquire);
+        for (;;) {
+            if ((state >> 32) != generation) return;
+            const std::uint32_t index = static_cast<std::uint32_t>(state);
+            if (index >= ranges_.load(std::memory_order_relaxed)) return;
+            if (!state_.compare_exchange_weak(state, state + 1, std::memory_order_acq_rel, std::memory_order_acquire)) continue;
+            const std::uint64_t n = count_, r = ranges_;
+            task_(static_cast<std::uint32_t>(n * index / r), static_cast<std::uint32_t>(n * (index + 1) / r));
+            done_.fetch_add(1, std::memory_order_acq_rel);
+            state = state_.load(std::memory_order_acquire);
+        }
+    }
+
+    void work() {
+        std::uint64_t seen = 0;
+        for (;;) {
+            std::uint64_t generation = state_.load(std::memory_order_acquire) >> 32;
+            for (int spin = 0; generation == seen && spin < 20000; ++spin) {
+                if (spin > 64) std::this_thread::yield();
+                generation = state_.load(std::memory_order_acquire) >> 32;
+            }
+            if (generation == seen) {
+                std::unique_lock<std::mutex> lock(mutex_);
+                wake_.wait(lock, [&] { return stopping_ || (state_.load(std::memory_order_acquire) >> 32) != seen; });
+                if (stopping_) return;
+                generation = state_.load(std::memory_order_acquire) >> 32;
+            }
+            seen = generation;
+            run_ranges(generation);
+        }
+    }
+
+    unsigned workers_;
+    std::vector<std::thread> threads_;
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    bool stopping_ = false;
+    std::atomic<std::uint64_t> state_{0};  ///< generation << 32 | ranges claimed
+    std::atomic<std::uint32_t> done_{0};   ///< ranges finished in this generation
+    // The job: written by the caller before it publishes a generation, read by a thread only
+    // after it claimed a range of that generation (the caller waits for every range, so the
+    // job cannot change under it). Atomics so that ThreadSanitizer sees the hand-over.
+    RangeTask task_{};
+    std::atomic<std::uint32_t> count_{0}, ranges_{0};
+};
+
+}  // namespace xeno

@@ -1,0 +1,205 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// A step on several threads (docs/parallel.md): the default pool hands out every item once,
+// worlds on 1, 2 and 3 workers and on a job system that cuts and orders the work at random end in
+// the same bits with the same events, the physics on the pool is the closed form's, and the
+// callbacks run on the stepping thread. scripts/test.sh also runs this file under
+// ThreadSanitizer.
+#include "robustness/state_hash.hpp"
+#include "scenes/all.hpp"
+#include "support/approx.hpp"
+#include "support/shuffled_tasks.hpp"
+
+#include <xeno/xeno.hpp>
+
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace xeno;
+
+TEST_CASE("the thread pool runs every item of [0, count) exactly once, call after call") {
+    for (const unsigned workers : {2u, 3u}) {
+        ThreadPool pool(workers);
+        CHECK(pool.workers() == workers);
+        for (const std::uint32_t count : {1u, 7u, 64u, 1000u, 100000u}) {
+            for (const std::uint32_t min_range : {1u, 16u, 256u}) {
+                std::vector<std::atomic<int>> seen(count);
+                for (int call = 0; call < 20; ++call) {
+                    parallel_for(&pool, count, min_range, [&](std::uint32_t begin, std::uint32_t end) {
+                        for (std::uint32_t i = begin; i < end; ++i) seen[i].fetch_add(1, std::memory_order_relaxed);
+                    });
+                }
+                int wrong = 0;
+                for (const std::atomic<int>& s : seen) wrong += s.load() == 20 ? 0 : 1;
+                CAPTURE(workers);
+                CAPTURE(count);
+                CAPTURE(min_range);
+                CHECK(wrong == 0);
+            }
+        }
+    }
+}
+
+TEST_CASE("worker counts out of range are rejected and change nothing") {
+    CHECK_THROWS_AS(ThreadPool(0), InvalidArgument);
+    CHECK_THROWS_AS(ThreadPool(257), InvalidArgument);
+    World<float> world;
+    world.set_workers(2);
+    CHECK_THROWS_AS(world.set_workers(0), InvalidArgument);
+    CHECK_THROWS_AS(world.set_workers(257), InvalidArgument);
+    CHECK(world.workers() == 2);
+    world.set_workers(1);
+    CHECK(world.workers() == 1);
+}
+
+namespace {
+
+/// How a world spreads its step: 1 worker, the pool with n, or the shuffled job system.
+struct Spread {
+    const char* name;
+    unsigned workers;
+    bool shuffled;
+};
+constexpr Spread spreads[] = {{"1 worker", 1, false}, {"2 workers", 2, false}, {"3 workers", 3, false}, {"shuffled", 3, true}};
+
+/// Every event field that is a number, as bits, in order.
+template <class T>
+std::uint64_t events_hash(const World<T>& world) {
+    test::Fnv1a h;
+    for (const ContactEvent<T>& e : world.contact_events()) {
+        h.add(static_cast<int>(e.kind));
+        h.add(e.a.index);
+        h.add(e.b.index);
+        h.add(e.sensor);
+        h.add(e.normal);
+        h.add(e.count);
+        for (const Vec3<T>& p : e.points) h.add(p);
+        h.add(e.impulse);
+    }
+    return h.value();
+}
+
+/// The state and event hashes after every step of `scene` with the default settings.
+template <class T>
+std::vector<std::uint64_t> run(const std::string& scene, int steps, const Spread& spread) {
+    World<T> world;
+    scenes::build<T>(scene, world);
+    test::ShuffledTasks shuffled(spread.workers);
+    if (spread.shuffled) world.set_task_system(&shuffled);
+    else world.set_workers(spread.workers);
+    std::vector<std::uint64_t> hashes;
+    for (int i = 0; i < steps; ++i) {
+        world.step(world.settings().fixed_time_step);
+        hashes.push_back(test::state_hash(world));
+        hashes.push_back(events_hash(world));
+    }
+    return hashes;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("every worker count and a shuffled job system give one worker's bits and events", T, float, double) {
+    // Shapes of every kind, compounds (collided on the stepping thread), joints with contacts, and
+    // a pile that falls asleep (sleeping on: the defaults).
+    for (const char* scene : {"mixed-pile", "compound-stack", "ragdoll", "sleeping-pile"}) {
+        const std::vector<std::uint64_t> one = run<T>(scene, 90, spreads[0]);
+        for (const Spread& spread : spreads) {
+            CAPTURE(scene);
+            CAPTURE(spread.name);
+            CHECK(run<T>(scene, 90, spread) == one);
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("300 boxes sliding at 5 m/s on two workers stop within 2 % of v^2/(2 mu g)", T, float, double) {
+    // 300 rows with the ground share no moving body: one colour, enough groups that the pool
+    // solves it on both threads. The defaults otherwise (sleeping on).
+    World<T> world;
+    world.set_workers(2);
+    BodyDef<T> ground;
+    ground.type = BodyType::static_body;
+    ground.position = {T(0), T(-0.5), T(0)};
+    ground.material.friction = T(0.5);
+    world.create_body(Box<T>(T(50), T(0.5), T(50)), ground);
+    const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.25), T(0.25), T(0.25)));
+    std::vector<BodyId> ids;
+    for (int i = 0; i < 300; ++i) {
+        BodyDef<T> def;
+        def.position = {T(-40) + T(1) * T(i % 20), T(0.25), T(-40) + T(2) * T(i / 20)};
+        def.material.friction = T(0.5);
+        ids.push_back(world.create_body(box, def));
+    }
+    for (int i = 0; i < 30; ++i) world.step(world.settings().fixed_time_step);  // settle
+    std::vector<Vec3<T>> start;
+    for (BodyId id : ids) {
+        start.push_back(world.body(id).position());
+        world.body(id).set_linear_velocity({T(5), T(0), T(0)});
+    }
+    world.step(world.settings().fixed_time_step);
+    CHECK(world.last_step_stats().contacts >= 300);  // all sliding (and awake) at once
+    CHECK(world.last_step_stats().colours >= 1);
+    for (int i = 1; i < 180; ++i) world.step(world.settings().fixed_time_step);
+    const T expected = T(25) / (T(2) * T(0.5) * T(9.81));
+    T worst = T(0);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        worst = std::max(worst, std::abs(world.body(ids[i]).position().x - start[i].x - expected));
+    CAPTURE(worst);
+    CHECK(worst < T(0.02) * expected);
+}
+
+TEST_CASE("the contact filter and listener run on the stepping thread") {
+    World<double> world;
+    scenes::build<double>("rain", world);
+    world.set_workers(3);
+    const std::thread::id stepping = std::this_thread::get_id();
+    int elsewhere = 0, filtered = 0, heard = 0;
+    world.set_contact_filter([&](BodyId, BodyId) {
+        ++filtered;
+        elsewhere += std::this_thread::get_id() == stepping ? 0 : 1;
+        return true;
+    });
+    world.set_contact_listener([&](World<double>& w, const ContactEvent<double>&) {
+        ++heard;
+        elsewhere += std::this_thread::get_id() == stepping ? 0 : 1;
+        CHECK_THROWS_AS(w.set_workers(1), InvalidArgument);  // not while stepping
+    });
+    for (int i = 0; i < 120; ++i) world.step(1.0 / 60);
+    CHECK(filtered > 0);
+    CHECK(heard > 0);
+    CHECK(elsewhere == 0);
+}
+
+TEST_CASE("between steps, several threads may query one world at once") {
+    // The contract of world.hpp's queries: they keep no scratch in the world. Three threads cast
+    // the same rays and shapes as the stepping thread did alone; the answers must be the same
+    // (and ThreadSanitizer, which runs this file, must see no race).
+    World<double> world;
+    scenes::build<double>("mixed-pile", world);
+    for (int i = 0; i < 60; ++i) world.step(1.0 / 60);
+    auto answers = [&world](int first) {
+        std::vector<double> out;
+        for (int k = first; k < first + 200; ++k) {
+            const double a = 0.1 * k;
+            const Ray<double> ray{
+                {4 * std::cos(a), 6, 4 * std::sin(a)}, normalized(Vec3<double>{-std::cos(a), -1.5, -std::sin(a)}), 20};
+            if (const auto hit = world.raycast(ray)) out.push_back(hit->hit.distance);
+            out.push_back(static_cast<double>(world.overlap_sphere({std::cos(a), 0.5, std::sin(a)}, 0.7).size()));
+            const auto cast = world.shape_cast(Sphere<double>(0.2), {{std::cos(a), 5, std::sin(a)}, {}}, {0, -6, 0});
+            out.push_back(cast ? cast->hit.fraction : -1.0);
+        }
+        return out;
+    };
+    const std::vector<double> alone = answers(0);
+    std::vector<std::vector<double>> together(3);
+    std::vector<std::thread> threads;
+    for (std::size_t t = 0; t < together.size(); ++t) threads.emplace_back([&, t] { together[t] = answers(0); });
+    for (std::thread& t : threads) t.join();
+    for (const std::vector<double>& answer : together) CHECK(answer == alone);
+    CHECK(alone.size() > 400);
+}
