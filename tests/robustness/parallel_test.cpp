@@ -23,7 +23,7 @@
 
 using namespace xeno;
 
-TEST_CASE("the thread pool runs every item of [0, count) exactly once, call after call") {
+TEST_CASE("the thread pool runs every item from 0 to count - 1 exactly once, call after call") {
     for (const unsigned workers : {2u, 3u}) {
         ThreadPool pool(workers);
         CHECK(pool.workers() == workers);

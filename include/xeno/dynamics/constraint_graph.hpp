@@ -3,7 +3,7 @@
 //
 // Graph colouring of the contact rows (docs/solver.md, "Colours"): rows of one colour share no
 // solver body other than the static stand-in, so they can be solved side by side in SIMD lanes
-// (and, later, on several threads) with the same result as one after another. The greedy rule of
+// and on several threads (task_system.hpp) with the same result as one after another. The greedy rule of
 // Box2D v3's constraint graph: each row, in row order, takes the lowest colour that neither of its
 // moving bodies has used; a row that finds none goes to the overflow set, solved one by one
 // before the colours. Static bodies are slot 0 and take no colour, so a pile on the ground does

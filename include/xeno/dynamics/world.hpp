@@ -18,6 +18,8 @@
 //    8. finish           impulses stored in the manifolds, poses and velocities written back
 //    9. sleep, events    islands of slow bodies fall asleep; the query trees follow the bodies
 //                        that moved; contact events are reported
+// With set_workers(n) or set_task_system(&jobs), the phases' independent work (per body, per pair,
+// per row, per colour's groups) runs on several threads with the same result (docs/parallel.md).
 // update(seconds) runs whole steps from an accumulator (thesis Quadro 22) and leaves the remainder
 // as an interpolation factor for rendering. Between steps, bodies change by ID (world_edit.hpp)
 // and the world answers queries (world_query.hpp).
@@ -295,7 +297,8 @@ public:
     // trees of every body's current box (static bodies in one) kept up to date by every change, so
     // a short ray or a small box costs O(log n) whatever the world's size; the exact test is the
     // shape's own. They keep no scratch in the world (each traversal stack is the call's own), so
-    // several threads may query between steps (not yet checked by ThreadSanitizer). A filter
+    // several threads may query between steps (tests/robustness/parallel_test.cpp, run under
+    // ThreadSanitizer). A filter
     // (QueryFilter: layer mask, ignore static / sensors / one body, a callback) chooses the
     // bodies; the default sees all. Results do not depend on the tree: equal distances go to the
     // lower slot, lists come in slot order (tested against a scan of every body).
