@@ -19,6 +19,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -167,4 +168,46 @@ private:
     std::atomic<std::uint32_t> count_{0}, ranges_{0};
 };
 
+namespace detail {
+
+/// Where a World's parallel work runs: a ThreadPool it owns (World::set_workers), the game's
+/// TaskSystem (not owned), or nowhere (the stepping thread). A copied world gets a pool of its
+/// own with as many workers, so two worlds never share xeno's pool, and shares the game's system;
+/// a moved-from world steps on one thread.
+class WorldTasks {
+public:
+    WorldTasks() = default;
+    WorldTasks(const WorldTasks& other) { *this = other; }
+    WorldTasks(WorldTasks&& other) noexcept : pool_(std::move(other.pool_)), tasks_(other.tasks_) { other.tasks_ = nullptr; }
+    WorldTasks& operator=(const WorldTasks& other) {
+        if (this == &other) return *this;
+        if (other.pool_) own(other.pool_->workers());
+        else use(other.tasks_);
+        return *this;
+    }
+    WorldTasks& operator=(WorldTasks&& other) noexcept {
+        pool_ = std::move(other.pool_);
+        tasks_ = other.tasks_;
+        other.tasks_ = nullptr;
+        return *this;
+    }
+
+    /// A pool of `workers` (1: none); the old one is kept if creating threads throws.
+    void own(unsigned workers) {
+        std::unique_ptr<ThreadPool> pool = workers > 1 ? std::make_unique<ThreadPool>(workers) : nullptr;
+        pool_ = std::move(pool);
+        tasks_ = pool_.get();
+    }
+    void use(TaskSystem* tasks) {
+        pool_.reset();
+        tasks_ = tasks;
+    }
+    TaskSystem* get() const { return tasks_; }
+
+private:
+    std::unique_ptr<ThreadPool> pool_;
+    TaskSystem* tasks_ = nullptr;
+};
+
+}  // namespace detail
 }  // namespace xeno

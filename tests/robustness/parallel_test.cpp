@@ -203,3 +203,19 @@ TEST_CASE("between steps, several threads may query one world at once") {
     for (const std::vector<double>& answer : together) CHECK(answer == alone);
     CHECK(alone.size() > 400);
 }
+
+TEST_CASE("a copied world gets a pool of its own and steps to the original's bits") {
+    World<float> world;
+    scenes::build<float>("rain", world);
+    world.set_workers(2);
+    for (int i = 0; i < 30; ++i) world.step(1.0f / 60);
+    World<float> copy = world;
+    CHECK(copy.workers() == 2);
+    World<float> moved = std::move(copy);
+    CHECK(moved.workers() == 2);
+    for (int i = 0; i < 60; ++i) {
+        world.step(1.0f / 60);
+        moved.step(1.0f / 60);
+    }
+    CHECK(test::state_hash(moved) == test::state_hash(world));
+}

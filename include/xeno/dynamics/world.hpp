@@ -353,19 +353,16 @@ public:
         require_outside_callbacks("World::set_workers");
         if (workers < 1 || workers > ThreadPool::max_workers)
             detail::report_invalid("World::set_workers", "workers must be between 1 and 256", static_cast<double>(workers));
-        std::unique_ptr<ThreadPool> pool = workers > 1 ? std::make_unique<ThreadPool>(workers) : nullptr;
-        pool_ = std::move(pool);
-        tasks_ = pool_.get();
+        tasks_.own(workers);
     }
     /// Steps through the game's own job system (not owned; it must outlive its use, or be
     /// replaced first). nullptr steps on the caller alone. Drops a pool from set_workers.
     void set_task_system(TaskSystem* tasks) {
         require_outside_callbacks("World::set_task_system");
-        pool_.reset();
-        tasks_ = tasks;
+        tasks_.use(tasks);
     }
     /// Threads a step may use: 1 without a task system.
-    unsigned workers() const { return tasks_ != nullptr ? tasks_->workers() : 1u; }
+    unsigned workers() const { return tasks_.get() != nullptr ? tasks_.get()->workers() : 1u; }
     /// Advances by `seconds` of real time in fixed steps of settings().fixed_time_step, at most
     /// max_steps_per_update per call (time beyond is dropped so a slow frame cannot snowball).
     /// Returns the number of steps taken.
@@ -552,8 +549,7 @@ private:
     std::vector<std::uint32_t> pair_degree_;         ///< per slot: broad-phase pairs (crowd thinning)
     std::vector<std::uint64_t> crowd_histogram_;     ///< pairs by crowd size (crowd thinning)
     std::vector<ContactEvent<T>> delivered_events_;  ///< the listener's copy of events_
-    TaskSystem* tasks_ = nullptr;                    ///< where a step's parallel stages run (nullptr: the stepping thread)
-    std::unique_ptr<ThreadPool> pool_;               ///< the world's own pool (set_workers)
+    detail::WorldTasks tasks_;                       ///< where a step's parallel stages run (set_workers, set_task_system)
     bool in_filter_ = false;                         ///< the contact filter is running: mutating calls are rejected
     bool in_listener_ = false;                       ///< the contact listener is running: step() and update() are rejected
 };
@@ -910,16 +906,17 @@ template <class T>
 void World<T>::update_bounds(T dt) {
     // Fattened by the speculative distance and by the distance the body can travel this step,
     // so contacts exist before the bodies meet.
-    parallel_for(tasks_, static_cast<std::uint32_t>(bodies_.size()), bounds_range, [&](std::uint32_t begin, std::uint32_t end) {
-        for (std::uint32_t i = begin; i < end; ++i) {
-            Body<T>& b = bodies_[i];
-            if (!b.alive_ || !b.enabled_) continue;  // a disabled body's box stays empty
-            if (b.type_ == BodyType::static_body && !b.moved_) continue;
-            const T reach = settings_.speculative_distance + travel_speed(b) * dt;
-            bounds_[i] = b.world_bounds().expanded(reach);
-            b.moved_ = false;
-        }
-    });
+    parallel_for(tasks_.get(), static_cast<std::uint32_t>(bodies_.size()), bounds_range,
+                 [&](std::uint32_t begin, std::uint32_t end) {
+                     for (std::uint32_t i = begin; i < end; ++i) {
+                         Body<T>& b = bodies_[i];
+                         if (!b.alive_ || !b.enabled_) continue;  // a disabled body's box stays empty
+                         if (b.type_ == BodyType::static_body && !b.moved_) continue;
+                         const T reach = settings_.speculative_distance + travel_speed(b) * dt;
+                         bounds_[i] = b.world_bounds().expanded(reach);
+                         b.moved_ = false;
+                     }
+                 });
 }
 
 // The queries' tree holds each body's current box: after the step, every body whose pose changed
@@ -958,7 +955,7 @@ void World<T>::rebuild_query_tree() {
 // every pair itself: the same calls on the same inputs, without a contact per pair kept apart.
 template <class T>
 void World<T>::narrow_phase(T dt) {
-    const bool parallel = tasks_ != nullptr && tasks_->workers() > 1;
+    const bool parallel = workers() > 1;
     pair_work_.resize(pairs_.size());
     collide_jobs_.clear();
     std::size_t old = 0;
@@ -988,18 +985,20 @@ void World<T>::narrow_phase(T dt) {
         if (parallel && work.kind == PairKind::collided) collide_jobs_.push_back(static_cast<std::uint32_t>(k));
     }
     job_contacts_.resize(collide_jobs_.size());
-    parallel_for(tasks_, static_cast<std::uint32_t>(collide_jobs_.size()), 16u, [&](std::uint32_t begin, std::uint32_t end) {
-        for (std::uint32_t j = begin; j < end; ++j) {
-            const std::uint32_t k = collide_jobs_[j];
-            const PairWork& work = pair_work_[k];
-            const Contact<T>* had =
-                work.old_begin < work.old_end && contacts_[work.old_begin].child_a == 0 && contacts_[work.old_begin].child_b == 0
-                    ? &contacts_[work.old_begin]
-                    : nullptr;
-            job_contacts_[j].manifold.count = 0;
-            collide_parts(pairs_[k], 0, 0, pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), had, job_contacts_[j]);
-        }
-    });
+    parallel_for(tasks_.get(), static_cast<std::uint32_t>(collide_jobs_.size()), 16u,
+                 [&](std::uint32_t begin, std::uint32_t end) {
+                     for (std::uint32_t j = begin; j < end; ++j) {
+                         const std::uint32_t k = collide_jobs_[j];
+                         const PairWork& work = pair_work_[k];
+                         const Contact<T>* had = work.old_begin < work.old_end && contacts_[work.old_begin].child_a == 0 &&
+                                                         contacts_[work.old_begin].child_b == 0
+                                                     ? &contacts_[work.old_begin]
+                                                     : nullptr;
+                         job_contacts_[j].manifold.count = 0;
+                         collide_parts(pairs_[k], 0, 0, pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), had,
+                                       job_contacts_[j]);
+                     }
+                 });
 
     std::vector<Contact<T>>& next = next_contacts_;
     next.clear();
@@ -1250,12 +1249,12 @@ void World<T>::prepare(T dt) {
         stats_.contact_points += static_cast<std::size_t>(contact.manifold.count);
     }
     constraints_.resize(row_contacts_.size());
-    parallel_for(tasks_, static_cast<std::uint32_t>(row_contacts_.size()), row_range,
+    parallel_for(tasks_.get(), static_cast<std::uint32_t>(row_contacts_.size()), row_range,
                  [&](std::uint32_t begin, std::uint32_t end) {
                      for (std::uint32_t r = begin; r < end; ++r)
                          constraints_[r] = contact_row(row_contacts_[r], soft, soft_static);
                  });
-    wide_rows_.build(constraints_, solver_masses_, tasks_);
+    wide_rows_.build(constraints_, solver_masses_, tasks_.get());
     stats_.colours = wide_rows_.colours_used();
     stats_.overflow_contacts = wide_rows_.overflow_rows();
 }
@@ -1363,7 +1362,7 @@ void World<T>::solve(T dt) {
     const T max_rotation = settings_.max_rotation_per_step / static_cast<T>(substeps);
     const auto movers = static_cast<std::uint32_t>(solver_bodies_.size() - 1);
     for (int sub = 0; sub < substeps; ++sub) {
-        parallel_for(tasks_, movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
+        parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
             for (std::uint32_t i = begin + 1; i <= end; ++i)
                 if (integration_[i].dynamic)
                     detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
@@ -1371,16 +1370,16 @@ void World<T>::solve(T dt) {
         if (settings_.warm_starting) {
             for (const detail::JointConstraint<T>& c : joint_rows_)
                 detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
-            wide_rows_.warm_start(solver_bodies_, tasks_);
+            wide_rows_.warm_start(solver_bodies_, tasks_.get());
         }
         pass.use_bias = true;
         for (int it = 0; it < settings_.velocity_iterations; ++it) {
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
                 for (const detail::JointConstraint<T>& c : joint_rows_)
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
-            wide_rows_.solve(solver_bodies_, pass, tasks_);
+            wide_rows_.solve(solver_bodies_, pass, tasks_.get());
         }
-        parallel_for(tasks_, movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
+        parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
             for (std::uint32_t i = begin + 1; i <= end; ++i)
                 detail::integrate_position(solver_bodies_[i], h, integration_[i].max_speed, max_rotation);
         });
@@ -1389,19 +1388,19 @@ void World<T>::solve(T dt) {
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
                 for (const detail::JointConstraint<T>& c : joint_rows_)
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], false, h);
-            wide_rows_.solve(solver_bodies_, pass, tasks_);
+            wide_rows_.solve(solver_bodies_, pass, tasks_.get());
         }
         solver_bodies_[0] = detail::SolverBody<T>{};
         wide_rows_.accumulate_step_impulses();
     }
-    wide_rows_.unpack(constraints_, tasks_);
+    wide_rows_.unpack(constraints_, tasks_.get());
     detail::apply_restitution(constraints_, solver_bodies_, solver_masses_, settings_.restitution_threshold);
 }
 
 template <class T>
 void World<T>::finish() {
     discard_overflowed_solve();
-    parallel_for(tasks_, static_cast<std::uint32_t>(constraints_.size()), finish_range,
+    parallel_for(tasks_.get(), static_cast<std::uint32_t>(constraints_.size()), finish_range,
                  [&](std::uint32_t begin, std::uint32_t end) {
                      for (std::uint32_t r = begin; r < end; ++r) {
                          const detail::ContactConstraint<T>& c = constraints_[r];
@@ -1420,7 +1419,7 @@ void World<T>::finish() {
                      }
                  });
     const auto movers = static_cast<std::uint32_t>(solver_bodies_.size() - 1);
-    parallel_for(tasks_, movers, finish_range, [&](std::uint32_t begin, std::uint32_t end) {
+    parallel_for(tasks_.get(), movers, finish_range, [&](std::uint32_t begin, std::uint32_t end) {
         for (std::uint32_t i = begin + 1; i <= end; ++i) {
             Body<T>& b = bodies_[solver_slot_[i]];
             const detail::SolverBody<T>& s = solver_bodies_[i];
