@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -62,9 +63,9 @@ void parallel_for(TaskSystem* tasks, std::uint32_t count, std::uint32_t min_rang
 
 /// The default task system: workers − 1 std::threads plus the caller. A parallel_for cuts the
 /// work into two to four ranges per worker (so a worker delayed by the OS is covered by the others)
-/// and every thread claims ranges from one atomic counter. Between calls the threads spin for a
-/// few microseconds (a step issues hundreds of short calls, one per colour and substep) and then
-/// sleep on a condition variable, so an idle pool costs nothing.
+/// and every thread claims ranges from one atomic counter. After a call the threads spin for up
+/// to 200 µs (a step issues hundreds of short calls, one per colour and substep) and then sleep on
+/// a condition variable, so an idle pool costs nothing.
 class ThreadPool final : public TaskSystem {
 public:
     static constexpr unsigned max_workers = 256;
@@ -119,6 +120,7 @@ public:
 
 private:
     static constexpr std::uint64_t closed = 0xffffffffu;
+    static constexpr std::chrono::microseconds spin_time{200};
 
     /// Claims and runs ranges of `generation` until none is left; counts the ones it ran.
     void run_ranges(std::uint64_t generation) {
@@ -138,9 +140,16 @@ private:
     void work() {
         std::uint64_t seen = 0;
         for (;;) {
+            // Spin, yielding, for up to spin_time: the gaps between a step's calls are mostly
+            // microseconds (colour after colour); past it, sleep until the next call, so the pool
+            // does not hold a core between steps.
             std::uint64_t generation = state_.load(std::memory_order_acquire) >> 32;
-            for (int spin = 0; generation == seen && spin < 20000; ++spin) {
-                if (spin > 64) std::this_thread::yield();
+            const auto until = std::chrono::steady_clock::now() + spin_time;
+            for (unsigned spin = 0; generation == seen; ++spin) {
+                if (spin % 64 == 63) {
+                    if (std::chrono::steady_clock::now() > until) break;
+                    std::this_thread::yield();
+                }
                 generation = state_.load(std::memory_order_acquire) >> 32;
             }
             if (generation == seen) {
