@@ -79,8 +79,10 @@ ClipPolygon<T> clip_by_plane(const ClipPolygon<T>& in, const Vec3<T>& origin, co
 }
 
 /// Reduces candidate contacts to at most four that keep the deepest and span the largest area.
+/// `first`, if given, is kept in place of the deepest (a caller that knows better among ties).
 template <class T>
-int reduce_to_four(std::array<ManifoldPoint<T>, ClipPolygon<T>::capacity>& pts, int count, const Vec3<T>& normal) {
+int reduce_to_four(std::array<ManifoldPoint<T>, ClipPolygon<T>::capacity>& pts, int count, const Vec3<T>& normal,
+                   int first = -1) {
     if (count <= 4) return count;
     auto mid = [](const ManifoldPoint<T>& m) { return (m.point_a + m.point_b) * T(0.5); };
     int chosen[4];
@@ -88,6 +90,7 @@ int reduce_to_four(std::array<ManifoldPoint<T>, ClipPolygon<T>::capacity>& pts, 
     chosen[0] = 0;
     for (int i = 1; i < count; ++i)
         if (pts[static_cast<std::size_t>(i)].depth > pts[static_cast<std::size_t>(chosen[0])].depth) chosen[0] = i;
+    if (first >= 0) chosen[0] = first;
     const Vec3<T> p0 = mid(pts[static_cast<std::size_t>(chosen[0])]);
     // 2. The farthest from it.
     chosen[1] = chosen[0] == 0 ? 1 : 0;

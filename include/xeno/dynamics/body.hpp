@@ -15,6 +15,7 @@
 #pragma once
 
 #include "../shape/compound.hpp"
+#include "../shape/mesh_shape.hpp"
 #include "../shape/shape.hpp"
 #include "material.hpp"
 
@@ -77,12 +78,20 @@ public:
     bool is_static() const { return type_ == BodyType::static_body; }
     bool is_dynamic() const { return type_ == BodyType::dynamic; }
     /// The body's convex shape; for a compound body, its first child's shape (see child_shape).
-    const Shape<T>& shape() const { return compound_ ? compound_->children().front().shape : *shape_; }
+    /// A mesh or heightfield body has none (InvalidArgument; see mesh()).
+    const Shape<T>& shape() const {
+        if (mesh_)
+            detail::report_invalid("Body::shape", "a mesh or heightfield body has no convex shape (see Body::mesh); triangles",
+                                   static_cast<double>(triangle_count(*mesh_)));
+        return compound_ ? compound_->children().front().shape : *shape_;
+    }
     const std::shared_ptr<const Shape<T>>& shared_shape() const { return shape_; }
     /// The compound, or nullptr for a body of one convex shape.
     const Compound<T>* compound() const { return compound_.get(); }
-    /// Convex parts: 1 for a simple body, the children of a compound.
-    std::uint32_t child_count() const { return compound_ ? static_cast<std::uint32_t>(compound_->size()) : 1u; }
+    /// The triangle mesh or heightfield of a level-geometry body, or nullptr.
+    const MeshShape<T>* mesh() const { return mesh_.get(); }
+    /// Convex parts: 1 for a simple body, the children of a compound, 0 for a mesh.
+    std::uint32_t child_count() const { return compound_ ? static_cast<std::uint32_t>(compound_->size()) : mesh_ ? 0u : 1u; }
     const Shape<T>& child_shape(std::uint32_t i) const { return compound_ ? compound_->children()[i].shape : *shape_; }
     /// World placement of part i.
     Transform<T> child_transform(std::uint32_t i) const {
@@ -90,6 +99,7 @@ public:
     }
     /// World bounding box of the whole body (every part).
     Aabb<T> world_bounds() const {
+        if (mesh_) return xeno::world_bounds(*mesh_, transform());
         if (!compound_) return xeno::world_bounds(*shape_, transform());
         Aabb<T> box;
         for (std::uint32_t i = 0; i < child_count(); ++i) box.merge(xeno::world_bounds(child_shape(i), child_transform(i)));
@@ -189,6 +199,7 @@ private:
 
     std::shared_ptr<const Shape<T>> shape_;        ///< the convex shape (null for compounds)
     std::shared_ptr<const Compound<T>> compound_;  ///< the parts (null for one convex shape)
+    std::shared_ptr<const MeshShape<T>> mesh_;     ///< level geometry (null for convex and compound bodies)
     Vec3<T> position_{};
     Quat<T> orientation_ = Quat<T>::identity();
     Vec3<T> linear_velocity_{};

@@ -29,6 +29,7 @@
 #include "../broadphase/aabb_tree.hpp"
 #include "../broadphase/sweep_and_prune.hpp"
 #include "../collide/collide.hpp"
+#include "../collide/mesh_collide.hpp"
 #include "../collide/raycast.hpp"
 #include "../collide/shape_cast.hpp"
 #include "../contact/manifold.hpp"
@@ -178,6 +179,17 @@ public:
     BodyId create_body(std::shared_ptr<const Compound<T>> compound, const BodyDef<T>& def = {});
     BodyId create_body(const Compound<T>& compound, const BodyDef<T>& def = {}) {
         return create_body(std::make_shared<const Compound<T>>(compound), def);
+    }
+    /// A body of level geometry, a triangle mesh or a heightfield (docs/meshes.md), placed by
+    /// def.position and def.orientation (the mesh's own frame: a mesh has no centre of mass).
+    /// Static or kinematic only: a dynamic definition is rejected (InvalidArgument), so the
+    /// definition has no default here.
+    BodyId create_body(std::shared_ptr<const MeshShape<T>> mesh, const BodyDef<T>& def);
+    BodyId create_body(const TriangleMesh<T>& mesh, const BodyDef<T>& def) {
+        return create_body(std::make_shared<const MeshShape<T>>(mesh), def);
+    }
+    BodyId create_body(const HeightField<T>& field, const BodyDef<T>& def) {
+        return create_body(std::make_shared<const MeshShape<T>>(field), def);
     }
     /// Removes the body and every contact it had; bodies resting on it wake up. The handle
     /// (and every copy of it) becomes stale.
@@ -427,17 +439,24 @@ private:
     static MassProperties<T> dynamic_mass(const Shape<T>* shape, const Compound<T>* compound, T density, T mass,
                                           const char* where);
     BodyId create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
-                            const BodyDef<T>& def);
+                            const BodyDef<T>& def, std::shared_ptr<const MeshShape<T>> mesh = nullptr);
     /// The contacts of one pair into `next`, matched to last step's contacts_[old_begin, old_end).
     void collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, std::vector<Contact<T>>& next);
     bool collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
                        Contact<T>& out) const;
+    /// The contacts of a pair with a mesh side (mesh_collide.hpp), matched to last step's by the
+    /// convex part and the normal.
+    void collide_mesh_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end,
+                           std::vector<Contact<T>>& next);
+    /// `out` from a fresh manifold of parts ca and cb, its points matched to `had` (or nullptr).
+    void make_contact(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
+                      const ContactManifold<T>& fresh, Contact<T>& out) const;
     /// How far apart a pair's contacts may begin: the speculative distance plus what the two can
     /// travel in the step.
     T pair_margin(const Body<T>& a, const Body<T>& b, T dt) const {
         return settings_.speculative_distance + (travel_speed(a) + travel_speed(b)) * dt;
     }
-    enum class PairKind : std::uint8_t { dropped, kept, collided, parts };
+    enum class PairKind : std::uint8_t { dropped, kept, collided, parts, mesh };
     /// What the narrow phase does with a broad-phase pair, and its contacts of last step.
     struct PairWork {
         std::uint32_t old_begin, old_end;  ///< in contacts_
@@ -538,6 +557,8 @@ private:
     // Scratch kept between steps so a settled step allocates nothing.
     std::vector<Contact<T>> next_contacts_;          ///< narrow phase output, swapped with contacts_
     std::vector<PairWork> pair_work_;                ///< per broad-phase pair (narrow phase)
+    std::vector<MeshContact<T>> mesh_contacts_;      ///< one convex part's manifolds against a mesh (narrow phase)
+    std::vector<std::uint8_t> old_taken_;            ///< last step's contacts of a mesh pair already matched
     std::vector<std::uint32_t> row_contacts_;        ///< per contact row: its contact (prepare)
     std::vector<std::uint32_t> collide_jobs_;        ///< several workers: the pairs of kind collided, in pair order
     std::vector<Contact<T>> job_contacts_;           ///< several workers: the contact of each of collide_jobs_
@@ -569,9 +590,20 @@ BodyId World<T>::create_body(std::shared_ptr<const Compound<T>> compound, const 
 }
 
 template <class T>
+BodyId World<T>::create_body(std::shared_ptr<const MeshShape<T>> mesh, const BodyDef<T>& def) {
+    require_outside_filter("World::create_body");
+    if (!mesh) detail::report_invalid("World::create_body", "mesh must not be null", 0.0);
+    return create_body_impl(nullptr, nullptr, def, std::move(mesh));
+}
+
+template <class T>
 BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
-                                  const BodyDef<T>& def) {
+                                  const BodyDef<T>& def, std::shared_ptr<const MeshShape<T>> mesh) {
     const char* where = "World::create_body";
+    if (mesh && def.type == BodyType::dynamic)
+        detail::report_invalid(where,
+                               "a mesh or heightfield body must be static or kinematic (it has no volume to weigh); triangles",
+                               static_cast<double>(triangle_count(*mesh)));
     detail::require_finite_xyz(def.position, where, "position");
     detail::require_orientation(def.orientation, where, "orientation");
     detail::require_finite_xyz(def.linear_velocity, where, "linear_velocity");
@@ -620,6 +652,7 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     b.alive_ = true;
     b.shape_ = std::move(shape);
     b.compound_ = std::move(compound);
+    b.mesh_ = std::move(mesh);
     b.type_ = def.type;
     b.position_ = def.position;
     b.orientation_ = normalized(def.orientation);
@@ -697,6 +730,7 @@ void World<T>::destroy_body(BodyId id) {
     b.alive_ = false;
     b.shape_.reset();
     b.compound_.reset();
+    b.mesh_.reset();
     ++b.generation_;
     bounds_[slot] = Aabb<T>{};
     query_tree_of(slot).remove(slot);
@@ -980,6 +1014,7 @@ void World<T>::narrow_phase(T dt) {
         // Both asleep (or asleep on static): the contacts stay as they were.
         work.kind = !wanted                      ? PairKind::dropped
                     : !active(a) && !active(b)   ? PairKind::kept
+                    : a.mesh_ || b.mesh_         ? PairKind::mesh
                     : a.compound_ || b.compound_ ? PairKind::parts
                                                  : PairKind::collided;
         if (parallel && work.kind == PairKind::collided) collide_jobs_.push_back(static_cast<std::uint32_t>(k));
@@ -1015,6 +1050,9 @@ void World<T>::narrow_phase(T dt) {
             }
         } else if (work.kind == PairKind::parts || (work.kind == PairKind::collided && !parallel)) {
             collide_pair(pairs_[k], pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), old, work.old_end, next);
+            old = work.old_end;
+        } else if (work.kind == PairKind::mesh) {
+            collide_mesh_pair(pairs_[k], pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), old, work.old_end, next);
             old = work.old_end;
         } else if (work.kind == PairKind::collided) {
             // Pass 2's contact took over last step's contact of parts (0, 0), if there was one.
@@ -1088,6 +1126,15 @@ bool World<T>::collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint3
     const ContactManifold<T> fresh =
         generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin, settings_.linear_slop);
     if (fresh.count == 0) return false;
+    make_contact(pair, ca, cb, margin, had, fresh, out);
+    return true;
+}
+
+template <class T>
+void World<T>::make_contact(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
+                            const ContactManifold<T>& fresh, Contact<T>& out) const {
+    const Body<T>& a = bodies_[pair.a];
+    const Body<T>& b = bodies_[pair.b];
     Contact<T>& c = out;
     c = had ? *had : Contact<T>{};
     c.was_touching = had && had->touching;
@@ -1104,7 +1151,49 @@ bool World<T>::collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint3
     else c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
     c.touching = c.manifold.touching();
     for (int i = 0; i < c.manifold.count; ++i) c.manifold.points[static_cast<std::size_t>(i)].step_impulse = T(0);
-    return true;
+}
+
+// A convex part against a mesh may give several manifolds (one per normal it leans on, none of
+// them tied to one triangle): each takes over last step's contact of the same part whose normal
+// agrees best (within about 8°), so warm starting carries across triangle borders. The mesh
+// side's part number is the triangle of the deepest point.
+template <class T>
+void World<T>::collide_mesh_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end,
+                                 std::vector<Contact<T>>& next) {
+    const Body<T>& a = bodies_[pair.a];
+    const Body<T>& b = bodies_[pair.b];
+    const bool mesh_is_a = a.mesh_ != nullptr;
+    const Body<T>& mesh = mesh_is_a ? a : b;
+    const Body<T>& other = mesh_is_a ? b : a;
+    old_taken_.assign(old_end - old_begin, 0);
+    for (std::uint32_t part = 0; part < other.child_count(); ++part) {
+        mesh_contacts_.clear();
+        collide_mesh(*mesh.mesh_, mesh.transform(), other.child_shape(part), other.child_transform(part), margin,
+                     settings_.linear_slop, mesh_contacts_);
+        for (const MeshContact<T>& m : mesh_contacts_) {
+            ContactManifold<T> fresh = m.manifold;
+            if (!mesh_is_a) {  // the normal goes from A to B
+                fresh.normal = -fresh.normal;
+                for (int i = 0; i < fresh.count; ++i)
+                    std::swap(fresh.points[static_cast<std::size_t>(i)].point_a,
+                              fresh.points[static_cast<std::size_t>(i)].point_b);
+            }
+            std::size_t match = old_end;
+            T best = T(0.99);
+            for (std::size_t o = old_begin; o < old_end; ++o) {
+                const Contact<T>& old = contacts_[o];
+                if (old_taken_[o - old_begin] || (mesh_is_a ? old.child_b : old.child_a) != part) continue;
+                const T agree = dot(old.manifold.normal, fresh.normal);
+                if (agree > best) best = agree, match = o;
+            }
+            if (match != old_end) old_taken_[match - old_begin] = 1;
+            next.emplace_back();
+            make_contact(pair, mesh_is_a ? m.triangle : part, mesh_is_a ? part : m.triangle, margin,
+                         match != old_end ? &contacts_[match] : nullptr, fresh, next.back());
+        }
+    }
+    for (std::size_t o = old_begin; o < old_end; ++o)
+        if (!old_taken_[o - old_begin]) end_contact(contacts_[o]);
 }
 
 template <class T>

@@ -41,6 +41,14 @@ Color body_color(BodyId id, const Body<T>& b) {
     return c;
 }
 
+/// Every triangle of a mesh or heightfield, filled, front side as wound.
+template <class T>
+void draw_mesh(DebugDraw<T>& out, const MeshShape<T>& mesh, const Transform<T>& pose, Color fill) {
+    for_each_triangle(mesh, local_bounds(mesh), [&](std::uint32_t, const MeshTriangle<T>& t) {
+        out.draw_triangle(pose.apply(t.v[0]), pose.apply(t.v[1]), pose.apply(t.v[2]), fill);
+    });
+}
+
 /// Draws the world into out (see the file comment).
 template <class T>
 void draw_world(const World<T>& world, DebugDraw<T>& out, const DrawOptions<T>& options = {}) {
@@ -48,6 +56,7 @@ void draw_world(const World<T>& world, DebugDraw<T>& out, const DrawOptions<T>& 
         world.for_each_body([&](BodyId id, const Body<T>& b) {
             if (!b.enabled() || (options.hide && options.hide(id))) return;  // disabled: out of the world
             const Color fill = body_color(id, b);
+            if (const MeshShape<T>* mesh = b.mesh()) draw_mesh(out, *mesh, b.transform(), fill);
             for (std::uint32_t k = 0; k < b.child_count(); ++k)
                 draw_shape(out, b.child_shape(k), b.child_transform(k), fill, Color{0.08f, 0.08f, 0.1f, 1.0f});
         });

@@ -158,6 +158,7 @@ void World<T>::set_shape_impl(std::uint32_t slot, std::shared_ptr<const Shape<T>
     end_contacts_of(slot);
     b.shape_ = std::move(shape);
     b.compound_ = std::move(compound);
+    b.mesh_.reset();  // a mesh body given a convex shape becomes a convex body
     if (recompute) b.set_mass_properties(m);
     b.wake();
     place_in_broad_phase(slot);
@@ -195,6 +196,9 @@ void World<T>::set_type(BodyId id, BodyType type) {
                 bodies_[j.a.index == slot ? j.b.index : j.a.index].type_ == BodyType::static_body)
                 detail::report_invalid(where, "a body jointed to a static body cannot become static; body index",
                                        static_cast<double>(slot));
+    if (type == BodyType::dynamic && b.mesh_)
+        detail::report_invalid(where, "a mesh or heightfield body cannot become dynamic (it has no volume to weigh); triangles",
+                               static_cast<double>(triangle_count(*b.mesh_)));
     MassProperties<T> m{};
     if (type == BodyType::dynamic) {
         if (!(b.density_ > T(0) && std::isfinite(b.density_)))

@@ -31,6 +31,9 @@ template <class T>
 std::optional<RayHit<T>> World<T>::nearest_hit(std::uint32_t slot, const Ray<T>& ray) const {
     const Body<T>& b = bodies_[slot];
     std::optional<RayHit<T>> nearest;
+    if (b.mesh_) {
+        if (const auto hit = xeno::raycast(*b.mesh_, b.transform(), ray)) nearest = hit->first;
+    }
     for (std::uint32_t k = 0; k < b.child_count(); ++k)
         if (const std::optional<RayHit<T>> hit = xeno::raycast(b.child_shape(k), b.child_transform(k), ray))
             if (!nearest || hit->distance < nearest->distance) nearest = hit;
@@ -133,6 +136,7 @@ std::vector<BodyId> World<T>::overlap_shape(const Shape<T>& shape, const Transfo
     const Aabb<T> box = world_bounds(shape, pose);
     return overlapping(box, filter, [&](std::uint32_t slot) {
         const Body<T>& b = bodies_[slot];
+        if (b.mesh_ && intersect_mesh(*b.mesh_, b.transform(), shape, pose)) return true;
         for (std::uint32_t k = 0; k < b.child_count(); ++k)
             if (intersect(shape, pose, b.child_shape(k), b.child_transform(k))) return true;
         return false;

@@ -1,0 +1,204 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// A convex shape against a mesh or heightfield (docs/meshes.md):
+//   1. the triangles under the convex's box (grown by the margin), found in the mesh's frame;
+//   2. each collided like any convex pair (MPR, least depth, normal refinement, face clipping),
+//      the triangle being a flat convex shape whose MPR start point is its point nearest the
+//      convex's centre (triangle.hpp);
+//   3. internal edges: a normal that comes from an edge or a corner the neighbours cover (a
+//      coplanar or concave neighbour: triangle.hpp, "active_edges") is replaced by the triangle's
+//      own normal and the manifold rebuilt along it, so a box sliding over a flat mesh meets no
+//      ghost edge (the idea of Jolt's active edges and Bullet's internal-edge utility: only a
+//      convex edge may push sideways). A contact that would push the convex out through the
+//      back of a triangle is dropped (triangles are one-sided, like Jolt's default);
+//   4. the manifolds whose normals agree within about 2.5° (coplanar neighbours, gentle bends)
+//      are merged and reduced to four points (the deepest, then the widest spread, as
+//      face_clip.hpp does), so a box on a flat mesh has one manifold of four points however many
+//      triangles it covers; a box in a crease keeps one manifold per face it leans on.
+#pragma once
+
+#include "../shape/mesh_shape.hpp"
+#include "../shape/triangle.hpp"
+#include "collide.hpp"
+
+#include <vector>
+
+namespace xeno {
+
+/// One manifold of a convex body against a mesh: the normal points from the mesh to the convex;
+/// `triangle` is the triangle of the deepest point (the mesh's own numbering).
+template <class T>
+struct MeshContact {
+    ContactManifold<T> manifold;
+    std::uint32_t triangle = 0;
+};
+
+namespace detail {
+
+/// Whether the normal n (mesh frame, from the triangle) comes from a feature the neighbours cover:
+/// an inactive edge, or a corner both of whose edges in this triangle are inactive.
+template <class T>
+bool from_inactive_feature(const MeshTriangle<T>& t, const Vec3<T>& n, T tolerance) {
+    T d[3];
+    for (int i = 0; i < 3; ++i) d[i] = dot(t.v[i], n);
+    const T top = std::max({d[0], d[1], d[2]});
+    int on = 0, mask = 0;
+    for (int i = 0; i < 3; ++i)
+        if (d[i] >= top - tolerance) ++on, mask |= 1 << i;
+    if (on == 3) return false;  // the face itself
+    const auto active = [&](int edge) { return (t.active_edges >> edge & 1) != 0; };
+    if (on == 2) {
+        const int edge = mask == 3 ? 0 : mask == 6 ? 1 : 2;  // {0,1} → 0, {1,2} → 1, {2,0} → 2
+        return !active(edge);
+    }
+    const int v = mask == 1 ? 0 : mask == 2 ? 1 : 2;
+    return !active(v) && !active((v + 2) % 3);
+}
+
+/// The manifold of one triangle and the convex, mesh frame (A = the triangle), after the edge
+/// correction; count 0 when they are apart or the contact faces the triangle's back.
+template <class S>
+ContactManifold<typename S::scalar_type> triangle_manifold(const MeshTriangle<typename S::scalar_type>& t, const S& convex,
+                                                           const Transform<typename S::scalar_type>& pose,
+                                                           const Vec3<typename S::scalar_type>& centre,
+                                                           typename S::scalar_type margin, typename S::scalar_type exact_above) {
+    using T = typename S::scalar_type;
+    const Triangle<T> tri(t, closest_point_on_triangle(centre, t.v[0], t.v[1], t.v[2]));
+    const MinkowskiDifference<Triangle<T>, S> md(tri, Transform<T>{}, convex, pose, margin);
+    Vec3<T> n, pa, pb;
+    T h;
+    if (!refined_contact(md, n, h, pa, pb, exact_above)) return {};
+    if (dot(n, t.normal) < T(0)) return {};  // out through the back
+    if (dot(n, t.normal) < T(1) - T(1e-6) && from_inactive_feature(t, n, T(1e-3) * tri.bounding_radius())) {
+        n = t.normal;
+        pb = md.to_a(convex.support(md.direction_to_b(-n)));  // the convex's lowest point along the face
+        h = dot(t.v[0] - pb, n);
+        if (!(h > -margin)) return {};
+        pa = pb + n * h;
+    }
+    return build_manifold(md, n, pa, pb, h, margin);
+}
+
+/// Candidate points of manifolds sharing a normal, reduced to four whenever the buffer fills.
+template <class T>
+struct NormalGroup {
+    Vec3<T> normal{};
+    T deepest = -ScalarTraits<T>::infinity;
+    std::uint32_t triangle = 0;
+    std::array<ManifoldPoint<T>, ClipPolygon<T>::capacity> points{};
+    int count = 0;
+
+    void add(const ContactManifold<T>& m, std::uint32_t tri, T size) {
+        for (int i = 0; i < m.count; ++i) {
+            const ManifoldPoint<T>& p = m.points[static_cast<std::size_t>(i)];
+            if (p.depth > deepest) {
+                deepest = p.depth;
+                normal = m.normal;
+                triangle = tri;
+            }
+            // Neighbours clipped along a shared edge give the same point twice: keep one.
+            bool seen = false;
+            for (int j = 0; j < count && !seen; ++j)
+                seen = length_squared(points[static_cast<std::size_t>(j)].point_b - p.point_b) <= square(T(1e-4) * size);
+            if (seen) continue;
+            if (count == ClipPolygon<T>::capacity) reduce();
+            points[static_cast<std::size_t>(count++)] = p;
+        }
+    }
+    /// Depths along the group's normal, then the four points that keep the deepest and span most.
+    /// On flat ground many points tie for the deepest: the one farthest from the points' centre
+    /// is kept first, so the four are the patch's corners rather than the first point found.
+    void reduce() {
+        Vec3<T> centre{};
+        for (int i = 0; i < count; ++i) {
+            ManifoldPoint<T>& p = points[static_cast<std::size_t>(i)];
+            p.depth = dot(p.point_a - p.point_b, normal);
+            centre += p.point_b;
+        }
+        centre = centre / static_cast<T>(std::max(count, 1));
+        T reach = T(0), top = -ScalarTraits<T>::infinity;
+        for (int i = 0; i < count; ++i) {
+            reach = std::max(reach, length(points[static_cast<std::size_t>(i)].point_b - centre));
+            top = std::max(top, points[static_cast<std::size_t>(i)].depth);
+        }
+        int first = -1;
+        T farthest = -T(1);
+        for (int i = 0; i < count; ++i) {
+            const ManifoldPoint<T>& p = points[static_cast<std::size_t>(i)];
+            const T d = length_squared(p.point_b - centre);
+            if (p.depth >= top - T(1e-3) * reach && d > farthest) farthest = d, first = i;
+        }
+        count = reduce_to_four(points, count, normal, first);
+    }
+};
+
+}  // namespace detail
+
+/// The manifolds of a convex shape (placed by pose_convex) against mesh m (placed by pose_mesh),
+/// appended to `out` in world coordinates, normals from the mesh to the convex: points within
+/// `margin` metres, least-depth expansion above `exact_depth_above` (as generate_contacts).
+template <class T>
+void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Shape<T>& convex, const Transform<T>& pose_convex,
+                  T margin, T exact_depth_above, std::vector<MeshContact<T>>& out) {
+    const Transform<T> pose = inverse(pose_mesh) * pose_convex;  // the convex in the mesh's frame
+    const Aabb<T> box = world_bounds(convex, pose).expanded(margin);
+    const Vec3<T> centre = pose.apply(interior_point(convex));
+    constexpr T same_normal = T(0.999);  // cos 2.6°
+    const T size = bounding_radius(convex);
+    std::vector<detail::NormalGroup<T>> groups;
+    std::visit(
+        [&](const auto& shape) {
+            for_each_triangle(m, box, [&](std::uint32_t k, const MeshTriangle<T>& t) {
+                const ContactManifold<T> c = detail::triangle_manifold(t, shape, pose, centre, margin, exact_depth_above);
+                if (c.count == 0) return;
+                detail::NormalGroup<T>* group = nullptr;
+                for (detail::NormalGroup<T>& g : groups)
+                    if (dot(g.normal, c.normal) >= same_normal) {
+                        group = &g;
+                        break;
+                    }
+                if (!group) {
+                    groups.emplace_back();
+                    group = &groups.back();
+                    group->normal = c.normal;
+                }
+                group->add(c, k, size);
+            });
+        },
+        convex);
+    for (detail::NormalGroup<T>& g : groups) {
+        g.reduce();
+        MeshContact<T> c;
+        c.triangle = g.triangle;
+        c.manifold.normal = pose_mesh.apply_direction(g.normal);
+        c.manifold.count = g.count;
+        for (int i = 0; i < g.count; ++i) {
+            const ManifoldPoint<T>& p = g.points[static_cast<std::size_t>(i)];
+            c.manifold.points[static_cast<std::size_t>(i)] = {pose_mesh.apply(p.point_a), pose_mesh.apply(p.point_b), p.depth};
+        }
+        out.push_back(c);
+    }
+}
+
+/// True when the convex shape overlaps some triangle of mesh m (touching is not overlapping).
+template <class T>
+bool intersect_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Shape<T>& convex,
+                    const Transform<T>& pose_convex) {
+    const Transform<T> pose = inverse(pose_mesh) * pose_convex;
+    const Vec3<T> centre = pose.apply(interior_point(convex));
+    bool hit = false;
+    std::visit(
+        [&](const auto& shape) {
+            using S = std::decay_t<decltype(shape)>;
+            for_each_triangle(m, world_bounds(convex, pose), [&](std::uint32_t, const MeshTriangle<T>& t) {
+                if (hit) return;
+                const Triangle<T> tri(t, detail::closest_point_on_triangle(centre, t.v[0], t.v[1], t.v[2]));
+                hit = detail::mpr(MinkowskiDifference<Triangle<T>, S>(tri, Transform<T>{}, shape, pose), true).hit;
+            });
+        },
+        convex);
+    return hit;
+}
+
+}  // namespace xeno

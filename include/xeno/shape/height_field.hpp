@@ -1,0 +1,199 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// HeightField<T>: terrain as a grid of heights, without storing triangles (docs/meshes.md).
+// Samples are `columns` along x by `rows` along z, `spacing` metres apart, centred on the local
+// origin in x and z; the height (local y) of sample (i, j) is heights[j * columns + i]. Each cell
+// (i, j), between samples i … i + 1 and j … j + 1, is two triangles split along the diagonal from
+// (i, j) to (i + 1, j + 1), both facing +y; a cell can be a hole (no triangles). Triangle index
+// 2 (j (columns − 1) + i) + s, s = 0 for (p00, p01, p11) and 1 for (p00, p11, p10). Active edges
+// are worked out per query from the neighbouring samples, by the same rule as a TriangleMesh.
+#pragma once
+
+#include "../collide/raycast.hpp"
+#include "../error.hpp"
+#include "triangle_mesh.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace xeno {
+
+/// A grid of heights (see the file comment).
+template <class T>
+class HeightField {
+public:
+    using scalar_type = T;
+
+    /// columns, rows >= 2; heights.size() == columns × rows, finite and within the size range;
+    /// spacing finite and within [min_size, max_size]; holes empty or one flag per cell
+    /// ((columns − 1) × (rows − 1), row-major, non-zero = hole). InvalidArgument otherwise.
+    HeightField(std::uint32_t columns, std::uint32_t rows, std::vector<T> heights, T spacing,
+                std::vector<std::uint8_t> holes = {});
+
+    std::uint32_t columns() const { return columns_; }
+    std::uint32_t rows() const { return rows_; }
+    T spacing() const { return spacing_; }
+    std::size_t size() const { return 2 * std::size_t(columns_ - 1) * (rows_ - 1); }
+    Aabb<T> local_bounds() const { return bounds_; }
+    T height(std::uint32_t i, std::uint32_t j) const { return heights_[std::size_t(j) * columns_ + i]; }
+    bool hole(std::uint32_t i, std::uint32_t j) const {
+        return !holes_.empty() && holes_[std::size_t(j) * (columns_ - 1) + i] != 0;
+    }
+    /// Local position of sample (i, j).
+    Vec3<T> sample(std::uint32_t i, std::uint32_t j) const {
+        return {origin_x_ + spacing_ * static_cast<T>(i), height(i, j), origin_z_ + spacing_ * static_cast<T>(j)};
+    }
+    /// Triangle k (see the file comment), with its active edges.
+    MeshTriangle<T> triangle(std::uint32_t k) const;
+    /// Calls f(k, triangle) for each triangle (not in a hole) whose box overlaps `box` (local).
+    template <class F>
+    void for_each_triangle(const Aabb<T>& box, F&& f) const;
+    /// The nearest hit of a ray (local frame) on the surface from either side, with the triangle.
+    std::optional<std::pair<RayHit<T>, std::uint32_t>> raycast(const Ray<T>& ray) const;
+    std::size_t memory_bytes() const { return heights_.capacity() * sizeof(T) + holes_.capacity(); }
+
+private:
+    /// Whether sample (i, j) exists and the neighbour triangle through it is there: the cell
+    /// (ci, cj) it belongs to is inside the grid and not a hole.
+    bool cell_present(std::int64_t ci, std::int64_t cj) const {
+        return ci >= 0 && cj >= 0 && ci < std::int64_t(columns_) - 1 && cj < std::int64_t(rows_) - 1 &&
+               !hole(static_cast<std::uint32_t>(ci), static_cast<std::uint32_t>(cj));
+    }
+    /// Cell range [lo, hi] (inclusive) along one axis covering [a, b] in local coordinates.
+    bool cell_range(T a, T b, T origin, std::uint32_t samples, std::uint32_t& lo, std::uint32_t& hi) const;
+
+    std::uint32_t columns_, rows_;
+    std::vector<T> heights_;
+    T spacing_;
+    std::vector<std::uint8_t> holes_;
+    T origin_x_, origin_z_;
+    Aabb<T> bounds_;
+};
+
+template <class T>
+HeightField<T>::HeightField(std::uint32_t columns, std::uint32_t rows, std::vector<T> heights, T spacing,
+                            std::vector<std::uint8_t> holes)
+    : columns_(columns), rows_(rows), heights_(std::move(heights)), spacing_(spacing), holes_(std::move(holes)) {
+    const char* where = "HeightField";
+    if (columns_ < 2 || rows_ < 2)
+        detail::report_invalid(where, "needs at least 2 columns and 2 rows of samples; the smaller count",
+                               static_cast<double>(std::min(columns_, rows_)));
+    if (heights_.size() != std::size_t(columns_) * rows_)
+        detail::report_invalid(where, "needs columns × rows heights; heights given", static_cast<double>(heights_.size()));
+    if (!holes_.empty() && holes_.size() != std::size_t(columns_ - 1) * (rows_ - 1))
+        detail::report_invalid(where, "needs no holes or one flag per cell, (columns − 1) × (rows − 1); flags given",
+                               static_cast<double>(holes_.size()));
+    detail::require_size(spacing_, where, "spacing");
+    for (std::size_t k = 0; k < heights_.size(); ++k)
+        detail::require_at_most(heights_[k], ScalarTraits<T>::max_size, where, ("height " + std::to_string(k)).c_str(), " m");
+    const T width = spacing_ * static_cast<T>(columns_ - 1), depth = spacing_ * static_cast<T>(rows_ - 1);
+    if (!(width <= ScalarTraits<T>::max_size && depth <= ScalarTraits<T>::max_size))
+        detail::report_invalid(where, "extent (spacing × cells) must be within the size range; metres",
+                               static_cast<double>(std::max(width, depth)));
+    origin_x_ = -T(0.5) * width;
+    origin_z_ = -T(0.5) * depth;
+    const auto [low, high] = std::minmax_element(heights_.begin(), heights_.end());
+    bounds_ = {{origin_x_, *low, origin_z_}, {origin_x_ + width, *high, origin_z_ + depth}};
+}
+
+template <class T>
+MeshTriangle<T> HeightField<T>::triangle(std::uint32_t k) const {
+    const std::uint32_t cell = k / 2, s = k % 2;
+    const std::uint32_t i = cell % (columns_ - 1), j = cell / (columns_ - 1);
+    const Vec3<T> p00 = sample(i, j), p01 = sample(i, j + 1), p11 = sample(i + 1, j + 1), p10 = sample(i + 1, j);
+    MeshTriangle<T> t;
+    // Per edge: the neighbour's cell and its third corner (the sample across the edge).
+    const std::int64_t ci = i, cj = j;
+    auto across = [&](std::int64_t ni, std::int64_t nj, std::int64_t wi, std::int64_t wj) {
+        return cell_present(ni, nj)
+                   ? std::optional<Vec3<T>>(sample(static_cast<std::uint32_t>(wi), static_cast<std::uint32_t>(wj)))
+                   : std::nullopt;
+    };
+    std::optional<Vec3<T>> w[3];
+    if (s == 0) {
+        t.v[0] = p00, t.v[1] = p01, t.v[2] = p11;
+        w[0] = across(ci - 1, cj, ci - 1, cj);      // p00 → p01: the cell to the left, its (i − 1, j)
+        w[1] = across(ci, cj + 1, ci + 1, cj + 2);  // p01 → p11: the cell above, its (i + 1, j + 2)
+        w[2] = across(ci, cj, ci + 1, cj);          // p11 → p00: the other half, p10
+    } else {
+        t.v[0] = p00, t.v[1] = p11, t.v[2] = p10;
+        w[0] = across(ci, cj, ci, cj + 1);          // p00 → p11: the other half, p01
+        w[1] = across(ci + 1, cj, ci + 2, cj + 1);  // p11 → p10: the cell to the right, its (i + 2, j + 1)
+        w[2] = across(ci, cj - 1, ci, cj - 1);      // p10 → p00: the cell below, its (i, j − 1)
+    }
+    t.normal = detail::triangle_normal(t.v[0], t.v[1], t.v[2]);
+    t.active_edges = 0;
+    for (int e = 0; e < 3; ++e)
+        if (!w[e] || detail::edge_is_active(t.normal, t.v[e], t.v[(e + 1) % 3], *w[e]))
+            t.active_edges = static_cast<std::uint8_t>(t.active_edges | (1u << e));
+    return t;
+}
+
+template <class T>
+bool HeightField<T>::cell_range(T a, T b, T origin, std::uint32_t samples, std::uint32_t& lo, std::uint32_t& hi) const {
+    const T first = std::floor((a - origin) / spacing_), last = std::floor((b - origin) / spacing_);
+    const T cells = static_cast<T>(samples - 1);
+    if (!(last >= T(0) && first < cells)) return false;
+    lo = static_cast<std::uint32_t>(std::max(first, T(0)));
+    hi = static_cast<std::uint32_t>(std::min(last, cells - T(1)));
+    return true;
+}
+
+template <class T>
+template <class F>
+void HeightField<T>::for_each_triangle(const Aabb<T>& box, F&& f) const {
+    if (!overlaps(box, bounds_)) return;
+    std::uint32_t i0, i1, j0, j1;
+    if (!cell_range(box.min.x, box.max.x, origin_x_, columns_, i0, i1) ||
+        !cell_range(box.min.z, box.max.z, origin_z_, rows_, j0, j1))
+        return;
+    for (std::uint32_t j = j0; j <= j1; ++j)
+        for (std::uint32_t i = i0; i <= i1; ++i) {
+            if (hole(i, j)) continue;
+            const T low = std::min({height(i, j), height(i + 1, j), height(i, j + 1), height(i + 1, j + 1)});
+            const T high = std::max({height(i, j), height(i + 1, j), height(i, j + 1), height(i + 1, j + 1)});
+            if (low > box.max.y || high < box.min.y) continue;
+            const std::uint32_t k = 2 * (j * (columns_ - 1) + i);
+            f(k, triangle(k));
+            f(k + 1, triangle(k + 1));
+        }
+}
+
+// Cells along the ray's path would be the fast way (a 2D DDA); the cells under the ray's box are
+// simpler and exact, and rays in games are short or vertical. A long slanted ray over a large
+// field visits many cells: bounded by the cells under its box.
+template <class T>
+std::optional<std::pair<RayHit<T>, std::uint32_t>> HeightField<T>::raycast(const Ray<T>& ray) const {
+    Ray<T> r = ray;
+    const std::optional<T> enter = xeno::raycast(bounds_.expanded(spacing_ * T(1e-3)), r);
+    if (!enter) return std::nullopt;
+    // Clip the ray to the field's box so its own box is finite.
+    Aabb<T> path;
+    path.merge(r.origin + r.direction * *enter);
+    const T reach = std::min(r.max_distance, *enter + length(bounds_.max - bounds_.min) + spacing_);
+    path.merge(r.origin + r.direction * reach);
+    std::optional<std::pair<RayHit<T>, std::uint32_t>> best;
+    for_each_triangle(path.expanded(spacing_ * T(1e-3)), [&](std::uint32_t k, const MeshTriangle<T>& t) {
+        if (const std::optional<T> d = detail::ray_triangle(r, t.v[0], t.v[1], t.v[2])) {
+            r.max_distance = *d;
+            RayHit<T> hit;
+            hit.distance = *d;
+            hit.point = r.origin + r.direction * *d;
+            hit.normal = dot(t.normal, r.direction) <= T(0) ? t.normal : -t.normal;
+            best = std::make_pair(hit, k);
+        }
+    });
+    return best;
+}
+
+namespace f32 {
+using HeightField = xeno::HeightField<float>;
+}
+namespace f64 {
+using HeightField = xeno::HeightField<double>;
+}
+
+}  // namespace xeno
