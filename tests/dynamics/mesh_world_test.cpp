@@ -1,0 +1,265 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Bodies on meshes and heightfields, with the default settings (sleeping on and off): sliding
+// against the closed form v²/(2µg) with no hop or turn at the triangles' edges (ghost collisions),
+// rolling without losing speed, resting on a corner shared by six triangles, settling in a bowl,
+// and the calls that must refuse a mesh.
+#include "support/approx.hpp"
+#include "support/sim.hpp"
+
+#include "scenes/compounds.hpp"
+
+#include <xeno/xeno.hpp>
+
+#include <cmath>
+
+using namespace xeno;
+using xeno::test::near;
+using Tri = std::array<std::uint32_t, 3>;
+
+namespace {
+
+/// A flat 20 × 20 m mesh of 800 triangles at y = 0 (1 m cells, each split along a diagonal).
+template <class T>
+TriangleMesh<T> flat_mesh() {
+    const int n = 20;
+    std::vector<Vec3<T>> v;
+    std::vector<Tri> tris;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) v.push_back({static_cast<T>(i - n / 2), T(0), static_cast<T>(j - n / 2)});
+    const auto at = [](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            tris.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+            tris.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+        }
+    return TriangleMesh<T>(v, tris);
+}
+
+enum class Floor { mesh, heightfield, box };
+
+/// The floor at y = 0 as a mesh, a heightfield of the same plane, or one static box.
+template <class T>
+BodyId add_floor(World<T>& w, Floor floor) {
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    if (floor == Floor::mesh) return w.create_body(flat_mesh<T>(), d);
+    if (floor == Floor::heightfield) return w.create_body(HeightField<T>(21, 21, std::vector<T>(441, T(0)), T(1)), d);
+    d.position = {T(0), T(-0.5), T(0)};
+    return w.create_body(Shape<T>(Box<T>(T(10), T(0.5), T(10))), d);
+}
+
+template <class T>
+T yaw_degrees(const Quat<T>& q) {
+    return T(2) * std::atan2(q.y, q.w) * T(180) / ScalarTraits<T>::pi;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a box slides across a mesh and a heightfield as on one box: no hop, no turn, v²/(2µg)", C,
+                   XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    for (const Floor floor : {Floor::mesh, Floor::heightfield}) {
+        for (const T yaw : {T(0), T(30)}) {  // square to the grid, and across its diagonals
+            World<T> w(C::settings());
+            add_floor(w, floor);
+            BodyDef<T> d;
+            d.position = {T(-7), T(0.5), T(0.2)};
+            d.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_y(), yaw * ScalarTraits<T>::pi / T(180));
+            d.linear_velocity = {T(5), T(0), T(0)};
+            const BodyId box = w.create_body(Shape<T>(Box<T>(T(0.5), T(0.5), T(0.5))), d);
+            T vertical = T(0), turn = T(0);
+            test::simulate(w, T(3), [&](int) {
+                vertical = std::max(vertical, std::abs(w.body(box).linear_velocity().y));
+                turn = std::max(turn, std::abs(yaw_degrees(w.body(box).orientation()) - yaw));
+            });
+            const T mu = T(0.6), g = T(9.81);
+            const T expected = T(25) / (T(2) * mu * g);
+            CAPTURE(static_cast<int>(floor));
+            CAPTURE(yaw);
+            CHECK(vertical < T(0.01));
+            CHECK(turn < T(0.5));
+            CHECK(std::abs(w.body(box).position().x + T(7) - expected) < T(0.02) * expected);
+            CHECK(length(w.body(box).linear_velocity()) < T(1e-3));
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("a sphere rolls across a mesh diagonally without losing speed or hopping", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    T final_speed[3] = {};
+    for (const Floor floor : {Floor::mesh, Floor::heightfield, Floor::box}) {
+        World<T> w(C::settings());
+        add_floor(w, floor);
+        BodyDef<T> d;
+        d.position = {T(-4), T(0.5), T(-3.877)};  // off the vertices, so it crosses edges and corners alike
+        const Vec3<T> v = normalized(Vec3<T>{T(1), T(0), T(1)}) * T(2);
+        d.linear_velocity = v;
+        d.angular_velocity = cross(Vec3<T>::unit_y(), v) / T(0.5);  // rolling: no slip at the contact
+        const BodyId ball = w.create_body(Shape<T>(Sphere<T>(T(0.5))), d);
+        T low = T(1), high = T(0), slow = T(10), fast = T(0);
+        const Vec3<T> start = d.position;
+        test::simulate(w, T(5.2), [&](int) {
+            const Body<T>& b = w.body(ball);
+            low = std::min(low, b.position().y), high = std::max(high, b.position().y);
+            slow = std::min(slow, length(b.linear_velocity())), fast = std::max(fast, length(b.linear_velocity()));
+        });
+        CAPTURE(static_cast<int>(floor));
+        CHECK(length(w.body(ball).position() - start) > T(10));
+        CHECK(slow > T(0.99) * T(2));  // within 1 % over 10 m
+        CHECK(fast < T(1.01) * T(2));
+        CHECK(high - low < T(1e-3));  // no hop above 1 mm
+        final_speed[static_cast<int>(floor)] = length(w.body(ball).linear_velocity());
+    }
+    // As on one box: the triangles cost no more than a few tenths of a percent.
+    CHECK(std::abs(final_speed[0] - final_speed[2]) < T(0.005) * final_speed[2]);
+    CHECK(std::abs(final_speed[1] - final_speed[2]) < T(0.005) * final_speed[2]);
+}
+
+TEST_CASE_TEMPLATE("a box resting on a corner shared by six triangles stays at rest", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    // A flat hexagonal fan around the origin: every edge through the centre is between coplanar
+    // triangles, so the corner is inactive and must give no sideways push.
+    std::vector<Vec3<T>> v{{T(0), T(0), T(0)}};
+    std::vector<Tri> tris;
+    for (int i = 0; i < 6; ++i) {
+        const T a = static_cast<T>(i) * ScalarTraits<T>::pi / T(3);
+        v.push_back({T(3) * std::cos(a), T(0), T(3) * std::sin(a)});
+        tris.push_back({0u, 1u + static_cast<std::uint32_t>((i + 1) % 6), 1u + static_cast<std::uint32_t>(i)});
+    }
+    World<T> w(C::settings());
+    BodyDef<T> ground;
+    ground.type = BodyType::static_body;
+    w.create_body(TriangleMesh<T>(v, tris), ground);
+    BodyDef<T> d;
+    d.position = {T(0), T(0.5), T(0)};
+    d.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_y(), T(0.3));
+    const BodyId box = w.create_body(Shape<T>(Box<T>(T(0.5), T(0.5), T(0.5))), d);
+    test::simulate(w, T(10));
+    const Vec3<T> drift = w.body(box).position() - d.position;
+    CAPTURE(drift);
+    CHECK(length(Vec3<T>{drift.x, T(0), drift.z}) < T(1e-3));
+    CHECK(std::abs(drift.y) < T(2e-3));  // resting a little inside, by the solver's slop
+}
+
+TEST_CASE_TEMPLATE("every kind of convex shape settles inside a bowl mesh and stays there", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    // A paraboloid bowl y = r²/8 of radius 5 m, triangles facing inward (up).
+    const int rings = 12, sectors = 24;
+    std::vector<Vec3<T>> v{{T(0), T(0), T(0)}};
+    std::vector<Tri> tris;
+    for (int r = 1; r <= rings; ++r)
+        for (int s = 0; s < sectors; ++s) {
+            const T radius = T(5) * static_cast<T>(r) / static_cast<T>(rings);
+            const T a = T(2) * ScalarTraits<T>::pi * static_cast<T>(s) / static_cast<T>(sectors);
+            v.push_back({radius * std::cos(a), radius * radius / T(8), radius * std::sin(a)});
+        }
+    const auto at = [](int r, int s) { return r == 0 ? 0u : static_cast<std::uint32_t>(1 + (r - 1) * sectors + (s % sectors)); };
+    for (int s = 0; s < sectors; ++s) tris.push_back({at(0, 0), at(1, s + 1), at(1, s)});
+    for (int r = 1; r < rings; ++r)
+        for (int s = 0; s < sectors; ++s) {
+            tris.push_back({at(r, s), at(r, s + 1), at(r + 1, s + 1)});
+            tris.push_back({at(r, s), at(r + 1, s + 1), at(r + 1, s)});
+        }
+    const TriangleMesh<T> bowl(v, tris);
+    for (std::uint32_t k = 0; k < bowl.size(); ++k) REQUIRE(bowl.triangle(k).normal.y > T(0));  // facing up: wound right
+    World<T> w(C::settings());
+    BodyDef<T> ground;
+    ground.type = BodyType::static_body;
+    w.create_body(bowl, ground);
+    std::vector<BodyId> bodies;
+    for (int i = 0; i < 27; ++i) {
+        BodyDef<T> d;
+        d.position = {T(-1.2) + T(1.2) * static_cast<T>(i % 3), T(2) + T(1.2) * static_cast<T>(i / 9),
+                      T(-1.2) + T(1.2) * static_cast<T>((i / 3) % 3)};
+        // Every kind of convex shape; the centre of mass at the local origin (hull and cone).
+        switch (i % 6) {
+            case 0: bodies.push_back(w.create_body(Shape<T>(Box<T>(T(0.4), T(0.4), T(0.4))), d)); break;
+            case 1: bodies.push_back(w.create_body(Shape<T>(Sphere<T>(T(0.4))), d)); break;
+            case 2: bodies.push_back(w.create_body(Shape<T>(Capsule<T>(T(0.3), T(0.3))), d)); break;
+            case 3: bodies.push_back(w.create_body(Shape<T>(Cylinder<T>(T(0.35), T(0.3))), d)); break;
+            case 4: bodies.push_back(w.create_body(Shape<T>(Cone<T>(T(0.4), T(0.7))), d)); break;
+            default: bodies.push_back(w.create_body(Shape<T>(make_regular_prism<T>(7, T(0.4), T(0.3))), d)); break;
+        }
+    }
+    test::simulate(w, T(8));
+    for (BodyId id : bodies) {
+        const Vec3<T> p = w.body(id).position();
+        const T r2 = p.x * p.x + p.z * p.z;
+        CAPTURE(p);
+        CHECK(is_finite(p));
+        CHECK(r2 < T(16));                 // inside the rim
+        CHECK(p.y > r2 / T(8) + T(0.15));  // above the surface under it (a cone's centre is 0.175 above its base)
+        CHECK(length(w.body(id).linear_velocity()) < T(0.1));  // settled
+    }
+}
+
+TEST_CASE_TEMPLATE("a compound table stands on a heightfield slope's foot and a hull rests on a ridge", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    // A field with a ridge along z (convex edges, active) and flat ground either side of it.
+    std::vector<T> heights;
+    for (int j = 0; j < 11; ++j)
+        for (int i = 0; i < 11; ++i) heights.push_back(std::max(T(0), T(1) - std::abs(static_cast<T>(i) - T(5))));
+    World<T> w(C::settings());
+    BodyDef<T> ground;
+    ground.type = BodyType::static_body;
+    w.create_body(HeightField<T>(11, 11, heights, T(1)), ground);
+    const auto table = scenes::table<T>();
+    BodyDef<T> d;
+    d.position = Vec3<T>{T(-3), T(0.01), T(0)} + table->shift();
+    const BodyId on_flat = w.create_body(table, d);
+    // A 7-sided prism lying across the ridge's crest, its axis along x: it rests on the fold.
+    BodyDef<T> h;
+    h.position = {T(0), T(1.5), T(0)};
+    const BodyId hull = w.create_body(Shape<T>(make_regular_prism<T>(7, T(0.4), T(0.6))), h);
+    test::simulate(w, T(1));
+    const Vec3<T> table_at = w.body(on_flat).position(), hull_at = w.body(hull).position();
+    test::simulate(w, T(4));
+    CHECK(length(w.body(on_flat).position() - table_at) < T(2e-3));
+    CHECK(std::abs(w.body(on_flat).position().y - table->shift().y) < T(0.01));  // legs on the ground
+    // Wherever it came to rest (on the crest or down a slope), it rests on the surface, not in it:
+    // the prism's smallest half size is its inradius 0.4 cos(π/7) = 0.36.
+    const Vec3<T> p = w.body(hull).position();
+    CAPTURE(p);
+    CAPTURE(hull_at);
+    CHECK(is_finite(p));
+    CHECK(length(w.body(hull).linear_velocity()) < T(0.05));
+    CHECK(p.y - std::max(T(0), T(1) - std::abs(p.x)) > T(0.3));
+}
+
+TEST_CASE_TEMPLATE("mesh bodies are static or kinematic, are seen by queries, and are refused where unsupported", T, float,
+                   double) {
+    World<T> w;
+    BodyDef<T> dynamic;
+    const HeightField<T> field(3, 3, std::vector<T>(9, T(0)), T(1));
+    CHECK_THROWS_AS(w.create_body(field, dynamic), InvalidArgument);
+    CHECK(w.body_count() == 0);
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    const BodyId ground = w.create_body(field, d);
+    CHECK_THROWS_AS(w.set_type(ground, BodyType::dynamic), InvalidArgument);
+    CHECK(w.body(ground).is_static());
+    CHECK_THROWS_AS(w.body(ground).shape(), InvalidArgument);
+    CHECK(w.body(ground).mesh() != nullptr);
+    CHECK_THROWS_AS(save_snapshot(w), InvalidArgument);
+    // A ray from above hits the field at y = 0; a sphere overlapping it is seen, one above is not.
+    const auto hit = w.raycast(Ray<T>{{T(0.3), T(5), T(0.2)}, {T(0), T(-1), T(0)}, T(10)});
+    REQUIRE(hit);
+    CHECK(hit->body == ground);
+    CHECK(near(hit->hit.distance, T(5)));
+    CHECK(near(hit->hit.normal, Vec3<T>{T(0), T(1), T(0)}));
+    CHECK(w.overlap_sphere({T(0.3), T(0.1), T(0.2)}, T(0.2)).size() == 1);
+    CHECK(w.overlap_sphere({T(0.3), T(0.3), T(0.2)}, T(0.2)).empty());
+    // A kinematic mesh lifts what rests on it.
+    BodyDef<T> k;
+    k.type = BodyType::kinematic;
+    k.position = {T(20), T(0), T(0)};
+    k.linear_velocity = {T(0), T(0.5), T(0)};
+    w.create_body(field, k);
+    BodyDef<T> on;
+    on.position = {T(20), T(0.25), T(0)};
+    const BodyId box = w.create_body(Shape<T>(Box<T>(T(0.25), T(0.25), T(0.25))), on);
+    for (int i = 0; i < 120; ++i) w.step(T(1) / T(60));
+    CHECK(near(w.body(box).position().y, T(1.25), T(0.01)));  // 2 s at 0.5 m/s, still on top
+}

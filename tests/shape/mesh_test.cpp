@@ -1,0 +1,193 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// TriangleMesh and HeightField on their own: input checks, what the build drops, active edges
+// against hand-worked cases, and box and ray queries against brute force over every triangle.
+#include "support/approx.hpp"
+
+#include <xeno/xeno.hpp>
+
+#include <doctest/doctest.h>
+
+#include <random>
+#include <set>
+
+using namespace xeno;
+using xeno::test::near;
+using Tri = std::array<std::uint32_t, 3>;
+
+namespace {
+
+/// An n × n grid of cells `cell` metres wide in the xz plane, centred on the origin, heights
+/// from `height(x, z)`, split like a HeightField's cells (both triangles facing +y).
+template <class T, class H>
+TriangleMesh<T> grid_mesh(int n, T cell, H height) {
+    std::vector<Vec3<T>> v;
+    std::vector<Tri> tris;
+    const T half = T(0.5) * cell * static_cast<T>(n);
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const T x = cell * static_cast<T>(i) - half, z = cell * static_cast<T>(j) - half;
+            v.push_back({x, height(x, z), z});
+        }
+    const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            tris.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+            tris.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+        }
+    return TriangleMesh<T>(v, tris);
+}
+
+template <class T>
+Aabb<T> box_of(const MeshTriangle<T>& t) {
+    Aabb<T> b;
+    for (const Vec3<T>& v : t.v) b.merge(v);
+    return b;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a triangle mesh rejects bad input and drops degenerate and duplicate triangles", T, float, double) {
+    const std::vector<Vec3<T>> v{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {2, 0, 0}, {1, 0, 1}};
+    CHECK_THROWS_AS(TriangleMesh<T>(v, {{0, 1, 7}}), InvalidArgument);  // index past the vertices
+    std::vector<Vec3<T>> bad = v;
+    bad[2].y = std::numeric_limits<T>::quiet_NaN();
+    CHECK_THROWS_AS(TriangleMesh<T>(bad, {{0, 2, 1}}), InvalidArgument);
+    CHECK_THROWS_AS(TriangleMesh<T>(v, {{0, 1, 3}}), InvalidArgument);  // collinear: nothing left
+    CHECK_THROWS_AS(TriangleMesh<T>(v, {}), InvalidArgument);
+    // One good triangle, the same one again (other winding, other start), a collinear one and a
+    // repeated corner: one triangle stays.
+    const TriangleMesh<T> m(v, {{0, 2, 1}, {1, 0, 2}, {0, 1, 3}, {1, 1, 2}, {1, 2, 0}});
+    CHECK(m.size() == 1);
+    CHECK(m.dropped_triangles() == 4);
+    CHECK(m.source_index(0) == 0);
+    CHECK(near(m.triangle(0).normal, Vec3<T>{0, 1, 0}));
+    // Corners at the same place under different indices are welded: these two are duplicates.
+    const std::vector<Vec3<T>> split{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {0, 0, 0}, {1, 0, 0}, {0, 0, 1}};
+    CHECK(TriangleMesh<T>(split, {{0, 2, 1}, {3, 5, 4}}).size() == 1);
+}
+
+TEST_CASE_TEMPLATE("edges between coplanar or concave neighbours are inactive, convex and border edges active", T, float,
+                   double) {
+    // A flat grid: every inner edge is between coplanar triangles.
+    const TriangleMesh<T> flat = grid_mesh<T>(4, T(1), [](T, T) { return T(0); });
+    int active = 0, border = 0;
+    for (std::uint32_t k = 0; k < flat.size(); ++k) {
+        const MeshTriangle<T> t = flat.triangle(k);
+        for (int e = 0; e < 3; ++e) {
+            const Vec3<T> mid = (t.v[e] + t.v[(e + 1) % 3]) * T(0.5);
+            const bool on_border = std::abs(mid.x) == T(2) || std::abs(mid.z) == T(2);
+            active += (t.active_edges >> e) & 1;
+            border += on_border;
+            CHECK(((t.active_edges >> e & 1) != 0) == on_border);
+        }
+    }
+    CHECK(active == 16);  // the 4 × 4 border edges
+    CHECK(border == 16);
+    // A ridge along z at x = 0 (a roof, convex), and a valley (concave).
+    for (const T sign : {T(1), T(-1)}) {
+        const TriangleMesh<T> fold = grid_mesh<T>(2, T(1), [sign](T x, T) { return -sign * T(0.5) * std::abs(x); });
+        int folds = 0;
+        for (std::uint32_t k = 0; k < fold.size(); ++k) {
+            const MeshTriangle<T> t = fold.triangle(k);
+            for (int e = 0; e < 3; ++e) {
+                const Vec3<T>& p = t.v[e];
+                const Vec3<T>& q = t.v[(e + 1) % 3];
+                if (p.x != T(0) || q.x != T(0)) continue;  // not the fold
+                ++folds;
+                CAPTURE(sign);
+                CHECK(((t.active_edges >> e & 1) != 0) == (sign > T(0)));  // only the ridge's fold is active
+            }
+        }
+        CHECK(folds == 4);  // two edges along the fold, seen from both sides
+    }
+}
+
+TEST_CASE_TEMPLATE("mesh box and ray queries find what brute force over every triangle finds", T, float, double) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-10.0, 10.0);
+    auto r = [&]() { return static_cast<T>(u(rng)); };
+    std::vector<Vec3<T>> v;
+    std::vector<Tri> tris;
+    for (std::uint32_t k = 0; k < 600; ++k) {
+        const Vec3<T> c{r(), r(), r()};
+        for (int i = 0; i < 3; ++i) v.push_back(c + Vec3<T>{r(), r(), r()} * T(0.1));
+        tris.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    const TriangleMesh<T> mesh(v, tris);
+    REQUIRE(mesh.size() == 600);
+    std::vector<MeshTriangle<T>> by_source(600);
+    for (std::uint32_t k = 0; k < mesh.size(); ++k) by_source[mesh.source_index(k)] = mesh.triangle(k);
+    for (int q = 0; q < 200; ++q) {
+        const Vec3<T> c{r(), r(), r()};
+        const Aabb<T> box = Aabb<T>::from_center(c, Vec3<T>{T(1.5), T(2), T(1)});
+        std::set<std::uint32_t> found, expected;
+        mesh.for_each_triangle(box, [&](std::uint32_t k, const MeshTriangle<T>&) { CHECK(found.insert(k).second); });
+        for (std::uint32_t k = 0; k < 600; ++k)
+            if (overlaps(box_of(by_source[k]), box)) expected.insert(k);
+        CHECK(found == expected);
+        // A ray from c in a random direction: the nearest hit over all triangles.
+        const Ray<T> ray{c, normalized(Vec3<T>{r(), r(), r()}), T(30)};
+        std::optional<T> nearest;
+        for (const MeshTriangle<T>& t : by_source)
+            if (const std::optional<T> d = detail::ray_triangle(ray, t.v[0], t.v[1], t.v[2]))
+                if (!nearest || *d < *nearest) nearest = d;
+        const auto hit = mesh.raycast(ray);
+        REQUIRE(hit.has_value() == nearest.has_value());
+        if (hit) CHECK(hit->first.distance == *nearest);
+    }
+}
+
+TEST_CASE_TEMPLATE("a heightfield has the triangles and active edges of the same grid built as a mesh", T, float, double) {
+    const auto height = [](T x, T z) { return T(0.3) * std::sin(T(0.9) * x) + T(0.2) * std::cos(T(1.3) * z) + T(0.1) * x; };
+    const int n = 6;
+    std::vector<T> heights;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) heights.push_back(height(static_cast<T>(i) - T(3), static_cast<T>(j) - T(3)));
+    const HeightField<T> field(n + 1, n + 1, heights, T(1));
+    const TriangleMesh<T> mesh = grid_mesh<T>(n, T(1), height);
+    REQUIRE(field.size() == mesh.size());
+    for (std::uint32_t k = 0; k < mesh.size(); ++k) {
+        const MeshTriangle<T> m = mesh.triangle(k);
+        const MeshTriangle<T> f = field.triangle(mesh.source_index(k));  // the same numbering, cell by cell
+        CAPTURE(k);
+        for (int i = 0; i < 3; ++i) CHECK(near(m.v[i], f.v[i], T(1e-5)));
+        CHECK(m.active_edges == f.active_edges);
+    }
+    // Box queries agree too.
+    const Aabb<T> box{{T(-1.2), T(-5), T(0.3)}, {T(0.7), T(5), T(1.9)}};
+    std::set<std::uint32_t> from_field, from_mesh;
+    field.for_each_triangle(box, [&](std::uint32_t k, const MeshTriangle<T>&) { from_field.insert(k); });
+    mesh.for_each_triangle(box, [&](std::uint32_t k, const MeshTriangle<T>&) { from_mesh.insert(k); });
+    CHECK(from_field == from_mesh);
+    // A vertical ray lands on the surface: at a sample, the sample's height.
+    const auto hit = field.raycast(Ray<T>{{T(1), T(10), T(-2)}, {T(0), T(-1), T(0)}, T(100)});
+    REQUIRE(hit);
+    CHECK(near(hit->first.point.y, height(T(1), T(-2)), T(1e-5)));
+    CHECK(hit->first.normal.y > T(0));
+}
+
+TEST_CASE_TEMPLATE("a heightfield rejects bad input, and its holes have no triangles", T, float, double) {
+    CHECK_THROWS_AS(HeightField<T>(1, 4, std::vector<T>(4, T(0)), T(1)), InvalidArgument);
+    CHECK_THROWS_AS(HeightField<T>(3, 3, std::vector<T>(8, T(0)), T(1)), InvalidArgument);
+    CHECK_THROWS_AS(HeightField<T>(3, 3, std::vector<T>(9, T(0)), T(0)), InvalidArgument);
+    CHECK_THROWS_AS(HeightField<T>(3, 3, std::vector<T>(9, std::numeric_limits<T>::infinity()), T(1)), InvalidArgument);
+    CHECK_THROWS_AS(HeightField<T>(3, 3, std::vector<T>(9, T(0)), T(1), std::vector<std::uint8_t>(3, 0)), InvalidArgument);
+    std::vector<std::uint8_t> holes(4, 0);
+    holes[3] = 1;  // cell (1, 1)
+    const HeightField<T> field(3, 3, std::vector<T>(9, T(0)), T(1), holes);
+    int seen = 0;
+    field.for_each_triangle(field.local_bounds().expanded(T(1)), [&](std::uint32_t k, const MeshTriangle<T>& t) {
+        ++seen;
+        CHECK(k / 2 != 3);
+        // Edges next to the hole are borders now: active.
+        for (int e = 0; e < 3; ++e) {
+            const Vec3<T> mid = (t.v[e] + t.v[(e + 1) % 3]) * T(0.5);
+            const bool by_hole = (mid.x == T(0) && mid.z == T(0.5)) || (mid.z == T(0) && mid.x == T(0.5));
+            if (by_hole) CHECK((t.active_edges >> e & 1) != 0);
+        }
+    });
+    CHECK(seen == 6);
+    CHECK_FALSE(field.raycast(Ray<T>{{T(0.5), T(3), T(0.5)}, {T(0), T(-1), T(0)}, T(10)}));  // through the hole
+}
