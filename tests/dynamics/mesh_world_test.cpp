@@ -251,6 +251,15 @@ TEST_CASE_TEMPLATE("mesh bodies are static or kinematic, are seen by queries, an
     CHECK(near(hit->hit.normal, Vec3<T>{T(0), T(1), T(0)}));
     CHECK(w.overlap_sphere({T(0.3), T(0.1), T(0.2)}, T(0.2)).size() == 1);
     CHECK(w.overlap_sphere({T(0.3), T(0.3), T(0.2)}, T(0.2)).empty());
+    // A capsule (radius 0.3, half height 0.5) swept down from y = 5 lands after 4.2 m; swept up
+    // from below it passes through the field's back.
+    const Shape<T> pill = Capsule<T>(T(0.3), T(0.5));
+    const auto down = w.shape_cast(pill, Transform<T>{{T(0.37), T(5), T(0.2)}, Quat<T>::identity()}, {T(0), T(-10), T(0)});
+    REQUIRE(down);
+    CHECK(down->body == ground);
+    CHECK(near(down->hit.fraction, T(0.42), T(1e-4)));
+    CHECK(near(down->hit.normal, Vec3<T>{T(0), T(-1), T(0)}, T(1e-4)));
+    CHECK_FALSE(w.shape_cast(pill, Transform<T>{{T(0.37), T(-3), T(0.2)}, Quat<T>::identity()}, {T(0), T(10), T(0)}));
     // A kinematic mesh lifts what rests on it.
     BodyDef<T> k;
     k.type = BodyType::kinematic;

@@ -21,6 +21,7 @@
 #include "../shape/mesh_shape.hpp"
 #include "../shape/triangle.hpp"
 #include "collide.hpp"
+#include "shape_cast.hpp"
 
 #include <vector>
 
@@ -223,6 +224,50 @@ bool intersect_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const 
         },
         convex);
     return hit;
+}
+
+/// Sweeps convex shape A from pose_a along `translation` against mesh m placed by pose_mesh: the
+/// first triangle it touches from the front (one met from behind is passed through, as contacts
+/// are one-sided). The same GJK ray cast as two convex shapes, per triangle under the swept box;
+/// internal edges are not corrected here (a cast grazing a flat mesh can stop at an edge of it).
+template <class T>
+std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>& pose_a, const Vec3<T>& translation,
+                                          const MeshShape<T>& m, const Transform<T>& pose_mesh) {
+    detail::require_finite_pose(pose_a, "shape_cast", "pose_a");
+    detail::require_finite_pose(pose_mesh, "shape_cast", "pose_mesh");
+    detail::require_finite_xyz(translation, "shape_cast", "translation");
+    const Transform<T> local = inverse(pose_mesh) * pose_a;
+    const Vec3<T> step = pose_mesh.inverse_apply_direction(translation);
+    Aabb<T> swept = world_bounds(a, local);
+    swept.merge(world_bounds(a, Transform<T>{local.position + step, local.orientation}));
+    const Vec3<T> origin = pose_a.position;
+    const Vec3<T> centre_a = pose_a.apply(interior_point(a));
+    std::optional<ShapeCastHit<T>> best;
+    std::visit(
+        [&](const auto& shape) {
+            for_each_triangle(m, swept, [&](std::uint32_t, const MeshTriangle<T>& t) {
+                MeshTriangle<T> placed = t;  // in the world, so the cast's frame is the convex pair's
+                for (Vec3<T>& v : placed.v) v = pose_mesh.apply(v);
+                placed.normal = pose_mesh.apply_direction(t.normal);
+                const Triangle<T> tri(placed, detail::closest_point_on_triangle(centre_a, placed.v[0], placed.v[1], placed.v[2]));
+                const auto support_c = [&](const Vec3<T>& v) {
+                    detail::CastVertex<T> p;
+                    p.a = rotate(pose_a.orientation, shape.support(inverse_rotate(pose_a.orientation, -v)));
+                    p.b = tri.support(v) - origin;
+                    p.c = p.b - p.a;
+                    return p;
+                };
+                const T size =
+                    shape.bounding_radius() + tri.bounding_radius() + length(translation) + length(tri.interior_point() - origin);
+                const std::optional<ShapeCastHit<T>> hit = detail::gjk_cast(
+                    support_c, (tri.interior_point() - origin) - (centre_a - origin), size, pose_a, translation,
+                    [&](const Transform<T>& at) { return detail::collide_pair(shape, at, tri, Transform<T>{}); });
+                if (!hit || dot(hit->normal, placed.normal) > T(0)) return;  // missed, or met from behind
+                if (!best || hit->fraction < best->fraction) best = hit;
+            });
+        },
+        a);
+    return best;
 }
 
 }  // namespace xeno

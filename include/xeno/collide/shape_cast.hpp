@@ -186,37 +186,23 @@ private:
 
 }  // namespace detail
 
-/// Sweeps shape A from pose_a along `translation` (metres, world) against B resting at pose_b.
-/// Returns the first contact, or nothing when A passes B (or stops short of it). Shapes that
-/// overlap at the start give fraction 0 and `initially_overlapping`. Poses and the translation must
-/// be finite (InvalidArgument).
-template <class T>
-std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>& pose_a, const Vec3<T>& translation,
-                                          const Shape<T>& b, const Transform<T>& pose_b) {
-    detail::require_finite_pose(pose_a, "shape_cast", "pose_a");
-    detail::require_finite_pose(pose_b, "shape_cast", "pose_b");
-    detail::require_finite_xyz(translation, "shape_cast", "translation");
-    const Vec3<T> origin = pose_a.position;  // every point below is relative to it
-    const auto support_c = [&](const Vec3<T>& v) {
-        detail::CastVertex<T> p;
-        p.a = rotate(pose_a.orientation, support(a, inverse_rotate(pose_a.orientation, -v)));
-        p.b = pose_b.position - origin + rotate(pose_b.orientation, support(b, inverse_rotate(pose_b.orientation, v)));
-        p.c = p.b - p.a;
-        return p;
-    };
-    // The tolerance on |v|: a fraction of the problem's size, as MPR's (ScalarTraits).
-    const T size = bounding_radius(a) + bounding_radius(b) + length(translation) + length(pose_b.position - origin);
+namespace detail {
+
+/// The GJK ray cast itself, on C = B ⊖ A given by `support_c(v)` (a CastVertex relative to
+/// pose_a.position) and a point `inside` it; `touch(pose)` is collide() of A at `pose` with B,
+/// for the start's overlap and the final normal. `size` scales the tolerance.
+template <class T, class SupportC, class Touch>
+std::optional<ShapeCastHit<T>> gjk_cast(const SupportC& support_c, const Vec3<T>& inside, T size, const Transform<T>& pose_a,
+                                        const Vec3<T>& translation, const Touch& touch) {
+    const Vec3<T> origin = pose_a.position;
     const T tolerance = ScalarTraits<T>::geometric_tolerance * size;
     const int max_iterations = 64;
-
     T lambda = T(0);
     Vec3<T> x = Vec3<T>::zero(), normal = Vec3<T>::zero();
-    const Vec3<T> centre_a = rotate(pose_a.orientation, interior_point(a));
-    const Vec3<T> centre_b = pose_b.position - origin + rotate(pose_b.orientation, interior_point(b));
-    Vec3<T> v = x - (centre_b - centre_a);  // from a point inside C to x
-    detail::CastSimplex<T> simplex;
+    Vec3<T> v = x - inside;  // from a point inside C to x
+    CastSimplex<T> simplex;
     for (int i = 0; i < max_iterations && dot(v, v) > tolerance * tolerance; ++i) {
-        const detail::CastVertex<T> p = support_c(v);
+        const CastVertex<T> p = support_c(v);
         const Vec3<T> w = x - p.c;
         const T vw = dot(v, w);
         if (vw > T(0)) {  // C's support plane along v separates x from C
@@ -238,7 +224,7 @@ std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>&
         v = simplex.closest(x);
     }
     if (normal == Vec3<T>::zero()) {  // never separated: they overlap where A starts
-        const Penetration<T> p = collide(a, pose_a, b, pose_b);
+        const Penetration<T> p = touch(pose_a);
         ShapeCastHit<T> hit;
         hit.initially_overlapping = true;
         hit.normal = p.hit ? p.normal : -normalized_or(translation, Vec3<T>::unit_y());
@@ -256,13 +242,40 @@ std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>&
     // collide()'s refined normal and point at that depth are the contact's.
     const T reach = length(translation);
     const T nudge = reach > T(0) ? std::min(T(1) - lambda, T(4) * tolerance / reach) : T(0);
-    const Penetration<T> touch =
-        collide(a, Transform<T>{pose_a.position + translation * (lambda + nudge), pose_a.orientation}, b, pose_b);
-    if (touch.hit && touch.depth <= T(16) * tolerance) {
-        hit.normal = touch.normal;
-        hit.point = touch.point_b;
+    const Penetration<T> p = touch(Transform<T>{pose_a.position + translation * (lambda + nudge), pose_a.orientation});
+    if (p.hit && p.depth <= T(16) * tolerance) {
+        hit.normal = p.normal;
+        hit.point = p.point_b;
     }
     return hit;
+}
+
+}  // namespace detail
+
+/// Sweeps shape A from pose_a along `translation` (metres, world) against B resting at pose_b.
+/// Returns the first contact, or nothing when A passes B (or stops short of it). Shapes that
+/// overlap at the start give fraction 0 and `initially_overlapping`. Poses and the translation must
+/// be finite (InvalidArgument).
+template <class T>
+std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>& pose_a, const Vec3<T>& translation,
+                                          const Shape<T>& b, const Transform<T>& pose_b) {
+    detail::require_finite_pose(pose_a, "shape_cast", "pose_a");
+    detail::require_finite_pose(pose_b, "shape_cast", "pose_b");
+    detail::require_finite_xyz(translation, "shape_cast", "translation");
+    const Vec3<T> origin = pose_a.position;  // every point below is relative to it
+    const auto support_c = [&](const Vec3<T>& v) {
+        detail::CastVertex<T> p;
+        p.a = rotate(pose_a.orientation, support(a, inverse_rotate(pose_a.orientation, -v)));
+        p.b = pose_b.position - origin + rotate(pose_b.orientation, support(b, inverse_rotate(pose_b.orientation, v)));
+        p.c = p.b - p.a;
+        return p;
+    };
+    // The tolerance on |v|: a fraction of the problem's size, as MPR's (ScalarTraits).
+    const T size = bounding_radius(a) + bounding_radius(b) + length(translation) + length(pose_b.position - origin);
+    const Vec3<T> centre_a = rotate(pose_a.orientation, interior_point(a));
+    const Vec3<T> centre_b = pose_b.position - origin + rotate(pose_b.orientation, interior_point(b));
+    return detail::gjk_cast(support_c, centre_b - centre_a, size, pose_a, translation,
+                            [&](const Transform<T>& at) { return collide(a, at, b, pose_b); });
 }
 
 /// A compound A (posed by its centre-of-mass frame, as a body) swept against B: the first touch of

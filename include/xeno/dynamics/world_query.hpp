@@ -158,9 +158,10 @@ std::optional<WorldShapeCastHit<T>> World<T>::shape_cast(const Shape<T>& shape, 
         tree.query(swept, [&](std::uint32_t slot) {
             if (!seen_by(filter, slot)) return;
             const Body<T>& b = bodies_[slot];
-            for (std::uint32_t k = 0; k < b.child_count(); ++k) {
+            for (std::uint32_t k = 0; k < b.child_count() + (b.mesh_ ? 1u : 0u); ++k) {
                 const std::optional<ShapeCastHit<T>> hit =
-                    xeno::shape_cast(shape, pose, translation, b.child_shape(k), b.child_transform(k));
+                    b.mesh_ ? xeno::shape_cast(shape, pose, translation, *b.mesh_, b.transform())
+                            : xeno::shape_cast(shape, pose, translation, b.child_shape(k), b.child_transform(k));
                 if (!hit) continue;
                 if (!best || hit->fraction < best->hit.fraction ||
                     (hit->fraction == best->hit.fraction && slot < best->body.index))
