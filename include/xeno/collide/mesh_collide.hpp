@@ -270,4 +270,11 @@ std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>&
     return best;
 }
 
+namespace f32 {
+using MeshContact = xeno::MeshContact<float>;
+}
+namespace f64 {
+using MeshContact = xeno::MeshContact<double>;
+}
+
 }  // namespace xeno

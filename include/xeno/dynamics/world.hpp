@@ -444,10 +444,16 @@ private:
     void collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, std::vector<Contact<T>>& next);
     bool collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
                        Contact<T>& out) const;
-    /// The contacts of a pair with a mesh side (mesh_collide.hpp), matched to last step's by the
+    /// A mesh pair's manifolds (mesh_collide.hpp), each with the convex side's part.
+    struct MeshManifolds {
+        std::vector<MeshContact<T>> contacts;
+        std::vector<std::uint32_t> parts;
+    };
+    void mesh_manifolds(const ProxyPair& pair, T margin, MeshManifolds& out) const;
+    /// The contacts of a pair with a mesh side from its manifolds, matched to last step's by the
     /// convex part and the normal.
-    void collide_mesh_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end,
-                           std::vector<Contact<T>>& next);
+    void merge_mesh_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, const MeshManifolds& fresh,
+                         std::vector<Contact<T>>& next);
     /// `out` from a fresh manifold of parts ca and cb, its points matched to `had` (or nullptr).
     void make_contact(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
                       const ContactManifold<T>& fresh, Contact<T>& out) const;
@@ -557,8 +563,10 @@ private:
     // Scratch kept between steps so a settled step allocates nothing.
     std::vector<Contact<T>> next_contacts_;          ///< narrow phase output, swapped with contacts_
     std::vector<PairWork> pair_work_;                ///< per broad-phase pair (narrow phase)
-    std::vector<MeshContact<T>> mesh_contacts_;      ///< one convex part's manifolds against a mesh (narrow phase)
-    std::vector<std::uint8_t> old_taken_;            ///< last step's contacts of a mesh pair already matched
+    MeshManifolds mesh_manifolds_;                   ///< one worker: a mesh pair's manifolds (narrow phase)
+    std::vector<std::uint32_t> mesh_jobs_;           ///< several workers: the pairs of kind mesh, in pair order
+    std::vector<MeshManifolds> mesh_job_manifolds_;  ///< several workers: the manifolds of each of mesh_jobs_
+    std::vector<std::uint8_t> old_taken_;            ///< last step's contacts of a mesh pair already matched (pass 3)
     std::vector<std::uint32_t> row_contacts_;        ///< per contact row: its contact (prepare)
     std::vector<std::uint32_t> collide_jobs_;        ///< several workers: the pairs of kind collided, in pair order
     std::vector<Contact<T>> job_contacts_;           ///< several workers: the contact of each of collide_jobs_
@@ -992,6 +1000,7 @@ void World<T>::narrow_phase(T dt) {
     const bool parallel = workers() > 1;
     pair_work_.resize(pairs_.size());
     collide_jobs_.clear();
+    mesh_jobs_.clear();
     std::size_t old = 0;
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
         const ProxyPair& pair = pairs_[k];
@@ -1018,6 +1027,7 @@ void World<T>::narrow_phase(T dt) {
                     : a.compound_ || b.compound_ ? PairKind::parts
                                                  : PairKind::collided;
         if (parallel && work.kind == PairKind::collided) collide_jobs_.push_back(static_cast<std::uint32_t>(k));
+        if (parallel && work.kind == PairKind::mesh) mesh_jobs_.push_back(static_cast<std::uint32_t>(k));
     }
     job_contacts_.resize(collide_jobs_.size());
     parallel_for(tasks_.get(), static_cast<std::uint32_t>(collide_jobs_.size()), 16u,
@@ -1034,12 +1044,19 @@ void World<T>::narrow_phase(T dt) {
                                        job_contacts_[j]);
                      }
                  });
+    if (mesh_job_manifolds_.size() < mesh_jobs_.size()) mesh_job_manifolds_.resize(mesh_jobs_.size());
+    parallel_for(tasks_.get(), static_cast<std::uint32_t>(mesh_jobs_.size()), 1u, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t j = begin; j < end; ++j) {
+            const ProxyPair& pair = pairs_[mesh_jobs_[j]];
+            mesh_manifolds(pair, pair_margin(bodies_[pair.a], bodies_[pair.b], dt), mesh_job_manifolds_[j]);
+        }
+    });
 
     std::vector<Contact<T>>& next = next_contacts_;
     next.clear();
     next.reserve(pairs_.size());  // most pairs give one contact: no copies while growing (a crowd's first step)
     old = 0;
-    std::size_t job = 0;
+    std::size_t job = 0, mesh_job = 0;
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
         const PairWork& work = pair_work_[k];
         while (old < work.old_begin) end_contact(contacts_[old++]);  // no pair this step: ended
@@ -1052,7 +1069,10 @@ void World<T>::narrow_phase(T dt) {
             collide_pair(pairs_[k], pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), old, work.old_end, next);
             old = work.old_end;
         } else if (work.kind == PairKind::mesh) {
-            collide_mesh_pair(pairs_[k], pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), old, work.old_end, next);
+            const T margin = pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt);
+            if (!parallel) mesh_manifolds(pairs_[k], margin, mesh_manifolds_);
+            merge_mesh_pair(pairs_[k], margin, old, work.old_end, parallel ? mesh_job_manifolds_[mesh_job++] : mesh_manifolds_,
+                            next);
             old = work.old_end;
         } else if (work.kind == PairKind::collided) {
             // Pass 2's contact took over last step's contact of parts (0, 0), if there was one.
@@ -1153,44 +1173,52 @@ void World<T>::make_contact(const ProxyPair& pair, std::uint32_t ca, std::uint32
     for (int i = 0; i < c.manifold.count; ++i) c.manifold.points[static_cast<std::size_t>(i)].step_impulse = T(0);
 }
 
+// Read-only, so pass 2 of the narrow phase runs it for several mesh pairs at once.
+template <class T>
+void World<T>::mesh_manifolds(const ProxyPair& pair, T margin, MeshManifolds& out) const {
+    const Body<T>& a = bodies_[pair.a];
+    const Body<T>& b = bodies_[pair.b];
+    const Body<T>& mesh = a.mesh_ ? a : b;
+    const Body<T>& other = a.mesh_ ? b : a;
+    out.contacts.clear();
+    out.parts.clear();
+    for (std::uint32_t part = 0; part < other.child_count(); ++part) {
+        collide_mesh(*mesh.mesh_, mesh.transform(), other.child_shape(part), other.child_transform(part), margin,
+                     settings_.linear_slop, out.contacts);
+        out.parts.resize(out.contacts.size(), part);
+    }
+}
+
 // A convex part against a mesh may give several manifolds (one per normal it leans on, none of
 // them tied to one triangle): each takes over last step's contact of the same part whose normal
 // agrees best (within about 8°), so warm starting carries across triangle borders. The mesh
 // side's part number is the triangle of the deepest point.
 template <class T>
-void World<T>::collide_mesh_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end,
-                                 std::vector<Contact<T>>& next) {
-    const Body<T>& a = bodies_[pair.a];
-    const Body<T>& b = bodies_[pair.b];
-    const bool mesh_is_a = a.mesh_ != nullptr;
-    const Body<T>& mesh = mesh_is_a ? a : b;
-    const Body<T>& other = mesh_is_a ? b : a;
+void World<T>::merge_mesh_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end,
+                               const MeshManifolds& fresh_list, std::vector<Contact<T>>& next) {
+    const bool mesh_is_a = bodies_[pair.a].mesh_ != nullptr;
     old_taken_.assign(old_end - old_begin, 0);
-    for (std::uint32_t part = 0; part < other.child_count(); ++part) {
-        mesh_contacts_.clear();
-        collide_mesh(*mesh.mesh_, mesh.transform(), other.child_shape(part), other.child_transform(part), margin,
-                     settings_.linear_slop, mesh_contacts_);
-        for (const MeshContact<T>& m : mesh_contacts_) {
-            ContactManifold<T> fresh = m.manifold;
-            if (!mesh_is_a) {  // the normal goes from A to B
-                fresh.normal = -fresh.normal;
-                for (int i = 0; i < fresh.count; ++i)
-                    std::swap(fresh.points[static_cast<std::size_t>(i)].point_a,
-                              fresh.points[static_cast<std::size_t>(i)].point_b);
-            }
-            std::size_t match = old_end;
-            T best = T(0.99);
-            for (std::size_t o = old_begin; o < old_end; ++o) {
-                const Contact<T>& old = contacts_[o];
-                if (old_taken_[o - old_begin] || (mesh_is_a ? old.child_b : old.child_a) != part) continue;
-                const T agree = dot(old.manifold.normal, fresh.normal);
-                if (agree > best) best = agree, match = o;
-            }
-            if (match != old_end) old_taken_[match - old_begin] = 1;
-            next.emplace_back();
-            make_contact(pair, mesh_is_a ? m.triangle : part, mesh_is_a ? part : m.triangle, margin,
-                         match != old_end ? &contacts_[match] : nullptr, fresh, next.back());
+    for (std::size_t i = 0; i < fresh_list.contacts.size(); ++i) {
+        const MeshContact<T>& m = fresh_list.contacts[i];
+        const std::uint32_t part = fresh_list.parts[i];
+        ContactManifold<T> fresh = m.manifold;
+        if (!mesh_is_a) {  // the normal goes from A to B
+            fresh.normal = -fresh.normal;
+            for (int p = 0; p < fresh.count; ++p)
+                std::swap(fresh.points[static_cast<std::size_t>(p)].point_a, fresh.points[static_cast<std::size_t>(p)].point_b);
         }
+        std::size_t match = old_end;
+        T best = T(0.99);
+        for (std::size_t o = old_begin; o < old_end; ++o) {
+            const Contact<T>& old = contacts_[o];
+            if (old_taken_[o - old_begin] || (mesh_is_a ? old.child_b : old.child_a) != part) continue;
+            const T agree = dot(old.manifold.normal, fresh.normal);
+            if (agree > best) best = agree, match = o;
+        }
+        if (match != old_end) old_taken_[match - old_begin] = 1;
+        next.emplace_back();
+        make_contact(pair, mesh_is_a ? m.triangle : part, mesh_is_a ? part : m.triangle, margin,
+                     match != old_end ? &contacts_[match] : nullptr, fresh, next.back());
     }
     for (std::size_t o = old_begin; o < old_end; ++o)
         if (!old_taken_[o - old_begin]) end_contact(contacts_[o]);

@@ -133,9 +133,11 @@ private:
 
 namespace f32 {
 using MeshTriangle = xeno::MeshTriangle<float>;
-}
+using Triangle = xeno::Triangle<float>;
+}  // namespace f32
 namespace f64 {
 using MeshTriangle = xeno::MeshTriangle<double>;
-}
+using Triangle = xeno::Triangle<double>;
+}  // namespace f64
 
 }  // namespace xeno
