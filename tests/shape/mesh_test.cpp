@@ -81,6 +81,7 @@ TEST_CASE_TEMPLATE("edges between coplanar or concave neighbours are inactive, c
             active += (t.active_edges >> e) & 1;
             border += on_border;
             CHECK(((t.active_edges >> e & 1) != 0) == on_border);
+            CHECK(t.fold_cos[e] == (on_border ? T(-1) : T(1)));  // a border may turn any way; coplanar: no fold
         }
     }
     CHECK(active == 16);  // the 4 × 4 border edges
@@ -98,6 +99,8 @@ TEST_CASE_TEMPLATE("edges between coplanar or concave neighbours are inactive, c
                 ++folds;
                 CAPTURE(sign);
                 CHECK(((t.active_edges >> e & 1) != 0) == (sign > T(0)));  // only the ridge's fold is active
+                // Slopes of 1:2 either side: the normals are 2 atan(1/2) apart, cos = 0.6.
+                CHECK(near(t.fold_cos[e], T(0.6), T(1e-5)));
             }
         }
         CHECK(folds == 4);  // two edges along the fold, seen from both sides
@@ -154,6 +157,7 @@ TEST_CASE_TEMPLATE("a heightfield has the triangles and active edges of the same
         CAPTURE(k);
         for (int i = 0; i < 3; ++i) CHECK(near(m.v[i], f.v[i], T(1e-5)));
         CHECK(m.active_edges == f.active_edges);
+        for (int e = 0; e < 3; ++e) CHECK(near(m.fold_cos[e], f.fold_cos[e], T(1e-5)));
     }
     // Box queries agree too.
     const Aabb<T> box{{T(-1.2), T(-5), T(0.3)}, {T(0.7), T(5), T(1.9)}};

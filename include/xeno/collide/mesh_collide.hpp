@@ -7,8 +7,9 @@
 //      the triangle being a flat convex shape whose MPR start point is its point nearest the
 //      convex's centre (triangle.hpp);
 //   3. internal edges: a normal that comes from an edge or a corner the neighbours cover (a
-//      coplanar or concave neighbour: triangle.hpp, "active_edges") is replaced by the triangle's
-//      own normal and the manifold rebuilt along it, so a box sliding over a flat mesh meets no
+//      coplanar or concave neighbour: triangle.hpp, "active_edges"), or that turns past the
+//      neighbour's normal at a convex edge, is replaced by the triangle's own normal and the
+//      manifold rebuilt along it, so a box sliding over a flat mesh meets no
 //      ghost edge (the idea of Jolt's active edges and Bullet's internal-edge utility: only a
 //      convex edge may push sideways). A contact that would push the convex out through the
 //      back of a triangle is dropped (triangles are one-sided, like Jolt's default);
@@ -37,10 +38,13 @@ struct MeshContact {
 
 namespace detail {
 
-/// Whether the normal n (mesh frame, from the triangle) comes from a feature the neighbours cover:
-/// an inactive edge, or a corner both of whose edges in this triangle are inactive.
+/// Whether the normal n (mesh frame, from the triangle) is a ghost: it comes from an inactive
+/// edge or a corner both of whose edges in this triangle are inactive, or it turns from the face
+/// normal by more than the fold of the active edge (or corner) it comes from: past the
+/// neighbour's own normal, where only the neighbour's face can push (a box corner on a slightly
+/// convex edge of a smooth hill was otherwise held on a 26° slope by a normal 38° uphill).
 template <class T>
-bool from_inactive_feature(const MeshTriangle<T>& t, const Vec3<T>& n, T tolerance) {
+bool is_ghost_normal(const MeshTriangle<T>& t, const Vec3<T>& n, T tolerance) {
     T d[3];
     for (int i = 0; i < 3; ++i) d[i] = dot(t.v[i], n);
     const T top = std::max({d[0], d[1], d[2]});
@@ -49,12 +53,19 @@ bool from_inactive_feature(const MeshTriangle<T>& t, const Vec3<T>& n, T toleran
         if (d[i] >= top - tolerance) ++on, mask |= 1 << i;
     if (on == 3) return false;  // the face itself
     const auto active = [&](int edge) { return (t.active_edges >> edge & 1) != 0; };
+    const T turn = dot(n, t.normal);
+    const T slack = T(1e-3);  // in cosine: about 2.6° near 0°, so round-off never flips it
     if (on == 2) {
         const int edge = mask == 3 ? 0 : mask == 6 ? 1 : 2;  // {0,1} → 0, {1,2} → 1, {2,0} → 2
-        return !active(edge);
+        return !active(edge) || turn < t.fold_cos[edge] - slack;
     }
-    const int v = mask == 1 ? 0 : mask == 2 ? 1 : 2;
-    return !active(v) && !active((v + 2) % 3);
+    const int v = mask == 1 ? 0 : mask == 2 ? 1 : 2;  // edges v and v − 1 meet at corner v
+    const int in = (v + 2) % 3;
+    if (!active(v) && !active(in)) return true;
+    T limit = T(1);
+    if (active(v)) limit = std::min(limit, t.fold_cos[v]);
+    if (active(in)) limit = std::min(limit, t.fold_cos[in]);
+    return turn < limit - slack;
 }
 
 /// Removes the points of a face contact (mesh frame) whose convex point lies beyond one of the
@@ -93,7 +104,7 @@ ContactManifold<typename S::scalar_type> triangle_manifold(const MeshTriangle<ty
     T h;
     if (!refined_contact<true>(md, n, h, pa, pb, exact_above)) return {};
     if (dot(n, t.normal) < T(0)) return {};  // out through the back
-    if (dot(n, t.normal) < T(1) - T(1e-6) && from_inactive_feature(t, n, T(1e-3) * tri.bounding_radius())) {
+    if (dot(n, t.normal) < T(1) - T(1e-6) && is_ghost_normal(t, n, T(1e-3) * tri.bounding_radius())) {
         n = t.normal;
         pb = md.to_a(convex.support(md.direction_to_b(-n)));  // the convex's lowest point along the face
         h = dot(t.v[0] - pb, n);

@@ -126,9 +126,13 @@ MeshTriangle<T> HeightField<T>::triangle(std::uint32_t k) const {
     }
     t.normal = detail::triangle_normal(t.v[0], t.v[1], t.v[2]);
     t.active_edges = 0;
-    for (int e = 0; e < 3; ++e)
-        if (!w[e] || detail::edge_is_active(t.normal, t.v[e], t.v[(e + 1) % 3], *w[e]))
+    for (int e = 0; e < 3; ++e) {
+        const Vec3<T>& p = t.v[e];
+        const Vec3<T>& q = t.v[(e + 1) % 3];
+        if (w[e]) t.fold_cos[e] = dot(t.normal, detail::triangle_normal(q, p, *w[e]));  // the neighbour runs q → p
+        if (!w[e] || detail::edge_is_active(t.normal, p, q, *w[e]))
             t.active_edges = static_cast<std::uint8_t>(t.active_edges | (1u << e));
+    }
     return t;
 }
 

@@ -24,15 +24,18 @@
 
 namespace xeno {
 
-/// A triangle of a mesh with what edge handling needs: its unit normal (front side) and which of
-/// its edges are active (edge i runs from v[i] to v[(i + 1) % 3]; bit i set: a contact normal
-/// from that edge is kept; clear: the neighbour across it is coplanar or concave and such a
-/// normal is replaced by the face normal, docs/meshes.md, "Internal edges").
+/// A triangle of a mesh with what edge handling needs (docs/meshes.md, "Internal edges"): its
+/// unit normal (front side), which of its edges are active (edge i runs from v[i] to
+/// v[(i + 1) % 3]; bit i set: a contact normal from that edge may be kept; clear: the neighbour
+/// across it is coplanar or concave and such a normal is replaced by the face normal), and for
+/// each active edge how far such a normal may turn from the face's: the cosine of the fold, the
+/// angle between this face's normal and the neighbour's (−1 at a border, where any turn is real).
 template <class T>
 struct MeshTriangle {
     Vec3<T> v[3];
     Vec3<T> normal{};
     std::uint8_t active_edges = 7;
+    T fold_cos[3] = {T(-1), T(-1), T(-1)};
 };
 
 namespace detail {

@@ -8,8 +8,8 @@
 //   3. adjacency: corners welded by exact position, triangles sharing an edge found by sorting
 //      edge keys, and each edge marked active or not (triangle.hpp, "active_edges");
 //   4. a bounding-volume hierarchy by median splits of the triangles' centres along the longest
-//      axis, leaves of up to four triangles: O(n log n), about 0.4 s for a million triangles
-//      (bench: xeno_mesh_bench); 16 + 4 + 1 bytes per triangle besides the vertices and nodes.
+//      axis, leaves of up to four triangles: O(n log n); the build time and bytes per triangle
+//      of a million-triangle mesh are measured by xeno_mesh_bench (docs/benchmarks.md, "Meshes").
 // Bodies made of a mesh are static or kinematic (a mesh has no volume to give a mass).
 #pragma once
 
@@ -84,8 +84,9 @@ public:
     /// constructor's list, the number queries and contacts report).
     MeshTriangle<T> triangle(std::uint32_t k) const {
         const Indices& t = tris_[k];
-        MeshTriangle<T> out{{vertices_[t[0]], vertices_[t[1]], vertices_[t[2]]}, {}, active_[k]};
+        MeshTriangle<T> out{{vertices_[t[0]], vertices_[t[1]], vertices_[t[2]]}, {}, active_[k], {}};
         out.normal = detail::triangle_normal(out.v[0], out.v[1], out.v[2]);
+        for (int e = 0; e < 3; ++e) out.fold_cos[e] = fold_cos_[k][static_cast<std::size_t>(e)];
         return out;
     }
     /// The index the triangle had in the constructor's list.
@@ -99,17 +100,21 @@ public:
     /// Bytes held, for the benchmark's memory per triangle.
     std::size_t memory_bytes() const {
         return vertices_.capacity() * sizeof(Vec3<T>) + tris_.capacity() * sizeof(Indices) + active_.capacity() +
-               source_.capacity() * sizeof(std::uint32_t) + nodes_.capacity() * sizeof(detail::BvhNode<T>);
+               fold_cos_.capacity() * sizeof(std::array<T, 3>) + source_.capacity() * sizeof(std::uint32_t) +
+               nodes_.capacity() * sizeof(detail::BvhNode<T>);
     }
 
 private:
     void drop_bad_triangles(const std::vector<Indices>& triangles);
     void mark_edges();
-    std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::vector<Vec3<T>>& centres);
+    void build_hierarchy();
+    std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::vector<std::uint32_t>& order,
+                        const std::vector<Aabb<T>>& boxes, const std::vector<Vec3<T>>& centres);
 
     std::vector<Vec3<T>> vertices_;
     std::vector<Indices> tris_;
     std::vector<std::uint8_t> active_;
+    std::vector<std::array<T, 3>> fold_cos_;  ///< per edge: MeshTriangle::fold_cos
     std::vector<std::uint32_t> source_;
     std::vector<detail::BvhNode<T>> nodes_;
     std::size_t dropped_ = 0;
@@ -119,8 +124,12 @@ template <class T>
 TriangleMesh<T>::TriangleMesh(std::vector<Vec3<T>> vertices, const std::vector<Indices>& triangles)
     : vertices_(std::move(vertices)) {
     const char* where = "TriangleMesh";
-    for (std::size_t i = 0; i < vertices_.size(); ++i)
-        detail::require_within_xyz(vertices_[i], ScalarTraits<T>::max_size, where, ("vertex " + std::to_string(i)).c_str(), " m");
+    const T limit = ScalarTraits<T>::max_size;
+    for (std::size_t i = 0; i < vertices_.size(); ++i) {
+        const Vec3<T>& v = vertices_[i];
+        if (!(std::abs(v.x) <= limit && std::abs(v.y) <= limit && std::abs(v.z) <= limit))  // NaN too; the message only then
+            detail::require_within_xyz(v, limit, where, ("vertex " + std::to_string(i)).c_str(), " m");
+    }
     for (std::size_t k = 0; k < triangles.size(); ++k)
         for (std::uint32_t index : triangles[k])
             if (index >= vertices_.size())
@@ -132,11 +141,7 @@ TriangleMesh<T>::TriangleMesh(std::vector<Vec3<T>> vertices, const std::vector<I
         detail::report_invalid(where, "needs at least one triangle that is not degenerate; triangles given",
                                static_cast<double>(triangles.size()));
     mark_edges();
-    std::vector<Vec3<T>> centres(tris_.size());
-    for (std::size_t k = 0; k < tris_.size(); ++k)
-        centres[k] = (vertices_[tris_[k][0]] + vertices_[tris_[k][1]] + vertices_[tris_[k][2]]) / T(3);
-    nodes_.reserve(2 * tris_.size() / 4 + 2);
-    build(0, static_cast<std::uint32_t>(tris_.size()), centres);
+    build_hierarchy();
 }
 
 template <class T>
@@ -192,6 +197,7 @@ void TriangleMesh<T>::mark_edges() {
         }
     std::sort(edges.begin(), edges.end());
     active_.assign(tris_.size(), 7);
+    fold_cos_.assign(tris_.size(), {T(-1), T(-1), T(-1)});
     for (std::size_t i = 0; i < edges.size();) {
         std::size_t j = i + 1;
         while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
@@ -204,6 +210,7 @@ void TriangleMesh<T>::mark_edges() {
                 const Vec3<T>& q = vertices_[t[(mine.edge + 1) % 3]];
                 const Vec3<T>& w = vertices_[tris_[other.tri][(other.edge + 2) % 3]];
                 const Vec3<T> n = detail::triangle_normal(vertices_[t[0]], vertices_[t[1]], vertices_[t[2]]);
+                fold_cos_[mine.tri][mine.edge] = dot(n, detail::triangle_normal(q, p, w));  // the neighbour runs q → p
                 if (!detail::edge_is_active(n, p, q, w)) active_[mine.tri] &= static_cast<std::uint8_t>(~(1u << mine.edge));
             }
         }
@@ -211,45 +218,55 @@ void TriangleMesh<T>::mark_edges() {
     }
 }
 
-// Median split along the longest axis of the triangles' centres; the k smallest centres (ties by
-// position in the list) go left, so the tree is the same whatever the sort's implementation.
+// The hierarchy is built on a permutation of the triangles, applied once at the end. Median
+// split along the longest axis of the triangles' centres: the k smallest centres (ties by index)
+// go left, a strict order, so each side's set (and so the whole tree) is the same whatever the
+// standard library's nth_element does; a leaf's triangles are kept in index order.
 template <class T>
-std::uint32_t TriangleMesh<T>::build(std::uint32_t begin, std::uint32_t end, std::vector<Vec3<T>>& centres) {
+void TriangleMesh<T>::build_hierarchy() {
+    const std::size_t n = tris_.size();
+    std::vector<Aabb<T>> boxes(n);
+    std::vector<Vec3<T>> centres(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        for (std::uint32_t v : tris_[k]) boxes[k].merge(vertices_[v]);
+        centres[k] = boxes[k].center();
+    }
+    std::vector<std::uint32_t> order(n);
+    std::iota(order.begin(), order.end(), 0u);
+    nodes_.reserve(n / 2 + 2);
+    build(0, static_cast<std::uint32_t>(n), order, boxes, centres);
+    const auto permute = [&](auto& table) {
+        std::remove_reference_t<decltype(table)> sorted(n);
+        for (std::size_t i = 0; i < n; ++i) sorted[i] = table[order[i]];
+        table.swap(sorted);
+    };
+    permute(tris_), permute(source_), permute(active_), permute(fold_cos_);
+}
+
+template <class T>
+std::uint32_t TriangleMesh<T>::build(std::uint32_t begin, std::uint32_t end, std::vector<std::uint32_t>& order,
+                                     const std::vector<Aabb<T>>& boxes, const std::vector<Vec3<T>>& centres) {
     const std::uint32_t index = static_cast<std::uint32_t>(nodes_.size());
     nodes_.emplace_back();
     Aabb<T> box, centre_box;
-    for (std::uint32_t k = begin; k < end; ++k) {
-        for (std::uint32_t v : tris_[k]) box.merge(vertices_[v]);
-        centre_box.merge(centres[k]);
+    for (std::uint32_t i = begin; i < end; ++i) {
+        box.merge(boxes[order[i]]);
+        centre_box.merge(centres[order[i]]);
     }
     nodes_[index].box = box;
     if (end - begin <= 4) {
+        std::sort(order.begin() + begin, order.begin() + end);
         nodes_[index].first = begin;
         nodes_[index].count = end - begin;
         return index;
     }
     const int axis = max_axis(centre_box.max - centre_box.min);
-    std::vector<std::uint32_t> order(end - begin);
-    std::iota(order.begin(), order.end(), begin);
-    const std::uint32_t half = (end - begin) / 2;
-    std::nth_element(order.begin(), order.begin() + half, order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const std::uint32_t half = begin + (end - begin) / 2;
+    std::nth_element(order.begin() + begin, order.begin() + half, order.begin() + end, [&](std::uint32_t a, std::uint32_t b) {
         return centres[a][axis] < centres[b][axis] || (centres[a][axis] == centres[b][axis] && a < b);
     });
-    std::sort(order.begin(), order.begin() + half);  // each side keeps the list's order
-    std::sort(order.begin() + half, order.end());
-    std::vector<Indices> tris(order.size());
-    std::vector<std::uint32_t> source(order.size());
-    std::vector<std::uint8_t> active(order.size());
-    std::vector<Vec3<T>> c(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-        tris[i] = tris_[order[i]], source[i] = source_[order[i]], active[i] = active_[order[i]], c[i] = centres[order[i]];
-    std::copy(tris.begin(), tris.end(), tris_.begin() + begin);
-    std::copy(source.begin(), source.end(), source_.begin() + begin);
-    std::copy(active.begin(), active.end(), active_.begin() + begin);
-    std::copy(c.begin(), c.end(), centres.begin() + begin);
-    build(begin, begin + half, centres);
-    const std::uint32_t right = build(begin + half, end, centres);
-    nodes_[index].first = right;
+    build(begin, half, order, boxes, centres);
+    nodes_[index].first = build(half, end, order, boxes, centres);
     return index;
 }
 
