@@ -90,6 +90,25 @@ void drop_points_beyond_inactive_edges(const MeshTriangle<T>& t, ContactManifold
     m.count = kept;
 }
 
+/// True when the placed convex is farther than `margin` from the triangle along its normal (in
+/// front or behind) or beyond one of its edges in its plane: a separating axis, found with at
+/// most five support calls, so the triangles under a body's box that it does not reach cost no
+/// MPR. Exact: a pair it rejects is more than `margin` apart, which MPR would have found too.
+template <class S>
+bool separated_from_triangle(const MeshTriangle<typename S::scalar_type>& t, const S& convex,
+                             const Transform<typename S::scalar_type>& pose, typename S::scalar_type margin) {
+    using T = typename S::scalar_type;
+    const Mat3<T> r = to_matrix(pose.orientation);
+    const auto extreme = [&](const Vec3<T>& d) { return r * convex.support(transposed_transform(r, d)) + pose.position; };
+    if (dot(extreme(-t.normal) - t.v[0], t.normal) > margin) return true;  // wholly in front
+    if (dot(extreme(t.normal) - t.v[0], t.normal) < -margin) return true;  // wholly behind
+    for (int e = 0; e < 3; ++e) {
+        const Vec3<T> out = normalized(cross(t.v[(e + 1) % 3] - t.v[e], t.normal));  // outward, in the plane
+        if (dot(extreme(-out) - t.v[e], out) > margin) return true;
+    }
+    return false;
+}
+
 /// The manifold of one triangle and the convex, mesh frame (A = the triangle), after the edge
 /// correction; count 0 when they are apart or the contact faces the triangle's back.
 template <class S>
@@ -98,11 +117,16 @@ ContactManifold<typename S::scalar_type> triangle_manifold(const MeshTriangle<ty
                                                            const Vec3<typename S::scalar_type>& centre,
                                                            typename S::scalar_type margin, typename S::scalar_type exact_above) {
     using T = typename S::scalar_type;
+    if (separated_from_triangle(t, convex, pose, margin)) return {};
     const Triangle<T> tri(t, closest_point_on_triangle(centre, t.v[0], t.v[1], t.v[2]));
     const MinkowskiDifference<Triangle<T>, S> md(tri, Transform<T>{}, convex, pose, margin);
     Vec3<T> n, pa, pb;
     T h;
-    if (!refined_contact<true>(md, n, h, pa, pb, exact_above)) return {};
+    // Round shapes touch in single points that must sit exactly under their centres (a rolling
+    // sphere is otherwise braked): their points on the surfaces (collide()'s contract). The
+    // others' manifolds come from face clipping; MPR's cheaper points are only its fallback.
+    constexpr bool round = std::is_same_v<S, Sphere<T>> || std::is_same_v<S, Capsule<T>>;
+    if (!refined_contact<round>(md, n, h, pa, pb, exact_above)) return {};
     if (dot(n, t.normal) < T(0)) return {};  // out through the back
     if (dot(n, t.normal) < T(1) - T(1e-6) && is_ghost_normal(t, n, T(1e-3) * tri.bounding_radius())) {
         n = t.normal;
@@ -228,7 +252,7 @@ bool intersect_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const 
         [&](const auto& shape) {
             using S = std::decay_t<decltype(shape)>;
             for_each_triangle(m, world_bounds(convex, pose), [&](std::uint32_t, const MeshTriangle<T>& t) {
-                if (hit) return;
+                if (hit || detail::separated_from_triangle(t, shape, pose, T(0))) return;
                 const Triangle<T> tri(t, detail::closest_point_on_triangle(centre, t.v[0], t.v[1], t.v[2]));
                 hit = detail::mpr(MinkowskiDifference<Triangle<T>, S>(tri, Transform<T>{}, shape, pose), true).hit;
             });
