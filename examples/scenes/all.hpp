@@ -10,6 +10,7 @@
 #include "features.hpp"
 #include "piles.hpp"
 #include "stacks.hpp"
+#include "terrain.hpp"
 #include "thesis.hpp"
 
 #include <string>
@@ -44,6 +45,8 @@ inline const std::vector<std::pair<std::string, std::string>>& scene_list() {
         {"ragdoll", "capsules joined by swing-twist joints and limited hinges, dropped on a step"},
         {"compound-stack", "compound bodies stacked: four L-shapes and three tables"},
         {"character", "a capsule moved by shape casts: up a step, along a wall, riding a platform"},
+        {"terrain", "boxes, capsules and a ragdoll tumble down a heightfield hill"},
+        {"mesh-bowl", "200 hulls, spheres, capsules, cylinders and boxes dropped into a triangle-mesh bowl"},
     };
     return list;
 }
@@ -74,6 +77,8 @@ Scene build(const std::string& name, World<T>& world) {
     if (name == "ragdoll") return ragdoll(world);
     if (name == "compound-stack") return compound_stack(world);
     if (name == "character") return character(world);
+    if (name == "terrain") return terrain(world);
+    if (name == "mesh-bowl") return mesh_bowl(world);
     xeno::detail::report_invalid(("xeno::scenes::build: unknown scene '" + name + "'").c_str(), "name length",
                                  static_cast<double>(name.size()));
 }

@@ -27,10 +27,11 @@ struct Run {
 // Every kind of shape (mixed-pile), many impacts (rain), a tall stack (pyramid), a chain of
 // events (dominoes), lever and restitution (seesaw), a 400:1 mass ratio, a sloped contact, joints
 // with contacts (ragdoll), and a plate carrying 36 boxes (more contacts on one body than the
-// solver has colours: its overflow rows, docs/solver.md, "Colours").
+// solver has colours: its overflow rows, docs/solver.md, "Colours"), and boxes, capsules and a
+// ragdoll on a heightfield (mesh contacts, docs/meshes.md).
 constexpr Run runs[] = {
-    {"mixed-pile", 300}, {"rain", 300},           {"pyramid", 120}, {"dominoes", 300}, {"seesaw", 180},
-    {"edge-edge", 120},  {"heavy-on-light", 120}, {"incline", 180}, {"ragdoll", 180},  {"loaded-plate", 120},
+    {"mixed-pile", 300},     {"rain", 300},    {"pyramid", 120}, {"dominoes", 300},     {"seesaw", 180},  {"edge-edge", 120},
+    {"heavy-on-light", 120}, {"incline", 180}, {"ragdoll", 180}, {"loaded-plate", 120}, {"terrain", 180},
 };
 
 template <class T>

@@ -105,9 +105,9 @@ std::vector<std::uint64_t> run(const std::string& scene, int steps, const Spread
 }  // namespace
 
 TEST_CASE_TEMPLATE("every worker count and a shuffled job system give one worker's bits and events", T, float, double) {
-    // Shapes of every kind, compounds (collided on the stepping thread), joints with contacts, and
-    // a pile that falls asleep (sleeping on: the defaults).
-    for (const char* scene : {"mixed-pile", "compound-stack", "ragdoll", "sleeping-pile"}) {
+    // Shapes of every kind, compounds (collided on the stepping thread), joints with contacts, a
+    // pile that falls asleep (sleeping on: the defaults), and mesh pairs (collided on the workers).
+    for (const char* scene : {"mixed-pile", "compound-stack", "ragdoll", "sleeping-pile", "terrain"}) {
         const std::vector<std::uint64_t> one = run<T>(scene, 90, spreads[0]);
         for (const Spread& spread : spreads) {
             CAPTURE(scene);
