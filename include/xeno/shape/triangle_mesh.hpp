@@ -124,6 +124,10 @@ template <class T>
 TriangleMesh<T>::TriangleMesh(std::vector<Vec3<T>> vertices, const std::vector<Indices>& triangles)
     : vertices_(std::move(vertices)) {
     const char* where = "TriangleMesh";
+    // Indices are 32-bit: every vertex and triangle must have a number below 2³² − 1.
+    if (vertices_.size() >= 0xffffffffu || triangles.size() >= 0xffffffffu)
+        detail::report_invalid(where, "takes fewer than 2^32 - 1 vertices and triangles; count",
+                               static_cast<double>(std::max(vertices_.size(), triangles.size())));
     const T limit = ScalarTraits<T>::max_size;
     for (std::size_t i = 0; i < vertices_.size(); ++i) {
         const Vec3<T>& v = vertices_[i];
