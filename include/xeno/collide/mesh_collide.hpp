@@ -69,18 +69,21 @@ bool is_ghost_normal(const MeshTriangle<T>& t, const Vec3<T>& n, T tolerance) {
 }
 
 /// Removes the points of a face contact (mesh frame) whose convex point lies beyond one of the
-/// triangle's inactive edges: a sphere's or a corner's single contact, found by the face through
-/// the closest points of the two features, can sit a centimetre past the edge, where the
-/// neighbour gives the true point; kept, it would be a second support off to the side (measured:
-/// a rolling sphere lost 1 % of its speed crossing a flat mesh's edges).
+/// triangle's edges in `edges` (bit i: edge i): a sphere's or a corner's single contact, found by
+/// the face through the closest points of the two features, can sit a centimetre past an
+/// inactive edge, where the neighbour gives the true point; kept, it would be a second support
+/// off to the side (measured: a rolling sphere lost 1 % of its speed crossing a flat mesh's
+/// edges). After a ghost normal was replaced, every edge counts: the body's lowest point along
+/// the face normal may lie over a neighbour that falls away, and its depth below this triangle's
+/// extended plane is no depth at all (bodies tumbling down a hill sank 7 cm with it).
 template <class T>
-void drop_points_beyond_inactive_edges(const MeshTriangle<T>& t, ContactManifold<T>& m, T tolerance) {
+void drop_points_beyond_edges(const MeshTriangle<T>& t, int edges, ContactManifold<T>& m, T tolerance) {
     int kept = 0;
     for (int i = 0; i < m.count; ++i) {
         const Vec3<T>& p = m.points[static_cast<std::size_t>(i)].point_b;
         bool beyond = false;
         for (int e = 0; e < 3 && !beyond; ++e) {
-            if ((t.active_edges >> e & 1) != 0) continue;
+            if ((edges >> e & 1) == 0) continue;
             const Vec3<T> edge = t.v[(e + 1) % 3] - t.v[e];
             const Vec3<T> out = normalized(cross(edge, t.normal));  // outward in the plane (counter-clockwise winding)
             beyond = dot(p - t.v[e], out) > tolerance;
@@ -128,7 +131,8 @@ ContactManifold<typename S::scalar_type> triangle_manifold(const MeshTriangle<ty
     constexpr bool round = std::is_same_v<S, Sphere<T>> || std::is_same_v<S, Capsule<T>>;
     if (!refined_contact<round>(md, n, h, pa, pb, exact_above)) return {};
     if (dot(n, t.normal) < T(0)) return {};  // out through the back
-    if (dot(n, t.normal) < T(1) - T(1e-6) && is_ghost_normal(t, n, T(1e-3) * tri.bounding_radius())) {
+    const bool ghost = dot(n, t.normal) < T(1) - T(1e-6) && is_ghost_normal(t, n, T(1e-3) * tri.bounding_radius());
+    if (ghost) {
         n = t.normal;
         pb = md.to_a(convex.support(md.direction_to_b(-n)));  // the convex's lowest point along the face
         h = dot(t.v[0] - pb, n);
@@ -136,7 +140,9 @@ ContactManifold<typename S::scalar_type> triangle_manifold(const MeshTriangle<ty
         pa = pb + n * h;
     }
     ContactManifold<T> m = build_manifold(md, n, pa, pb, h, margin);
-    if (dot(n, t.normal) >= T(1) - T(1e-6)) drop_points_beyond_inactive_edges(t, m, T(1e-4) * tri.bounding_radius());
+    const T tolerance = T(1e-4) * tri.bounding_radius();
+    if (ghost) drop_points_beyond_edges(t, 7, m, tolerance);
+    else if (dot(n, t.normal) >= T(1) - T(1e-6)) drop_points_beyond_edges(t, ~t.active_edges & 7, m, tolerance);  // inactive ones
     return m;
 }
 
