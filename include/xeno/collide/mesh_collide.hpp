@@ -120,7 +120,6 @@ ContactManifold<typename S::scalar_type> triangle_manifold(const MeshTriangle<ty
                                                            const Vec3<typename S::scalar_type>& centre,
                                                            typename S::scalar_type margin, typename S::scalar_type exact_above) {
     using T = typename S::scalar_type;
-    if (separated_from_triangle(t, convex, pose, margin)) return {};
     const Triangle<T> tri(t, closest_point_on_triangle(centre, t.v[0], t.v[1], t.v[2]));
     const MinkowskiDifference<Triangle<T>, S> md(tri, Transform<T>{}, convex, pose, margin);
     Vec3<T> n, pa, pb;
@@ -215,22 +214,28 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
     std::vector<detail::NormalGroup<T>> groups;
     std::visit(
         [&](const auto& shape) {
-            for_each_triangle(m, box, [&](std::uint32_t k, const MeshTriangle<T>& t) {
-                const ContactManifold<T> c = detail::triangle_manifold(t, shape, pose, centre, margin, exact_depth_above);
-                if (c.count == 0) return;
-                detail::NormalGroup<T>* group = nullptr;
-                for (detail::NormalGroup<T>& g : groups)
-                    if (dot(g.normal, c.normal) >= same_normal) {
-                        group = &g;
-                        break;
+            const auto reaches = [&](const MeshTriangle<T>& t) {
+                return !detail::separated_from_triangle(t, shape, pose, margin);
+            };
+            for_each_triangle(
+                m, box,
+                [&](std::uint32_t k, const MeshTriangle<T>& t) {
+                    const ContactManifold<T> c = detail::triangle_manifold(t, shape, pose, centre, margin, exact_depth_above);
+                    if (c.count == 0) return;
+                    detail::NormalGroup<T>* group = nullptr;
+                    for (detail::NormalGroup<T>& g : groups)
+                        if (dot(g.normal, c.normal) >= same_normal) {
+                            group = &g;
+                            break;
+                        }
+                    if (!group) {
+                        groups.emplace_back();
+                        group = &groups.back();
+                        group->normal = c.normal;
                     }
-                if (!group) {
-                    groups.emplace_back();
-                    group = &groups.back();
-                    group->normal = c.normal;
-                }
-                group->add(c, k, size);
-            });
+                    group->add(c, k, size);
+                },
+                reaches);
         },
         convex);
     for (detail::NormalGroup<T>& g : groups) {

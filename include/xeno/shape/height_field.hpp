@@ -48,9 +48,11 @@ public:
     }
     /// Triangle k (see the file comment), with its active edges.
     MeshTriangle<T> triangle(std::uint32_t k) const;
-    /// Calls f(k, triangle) for each triangle (not in a hole) whose box overlaps `box` (local).
-    template <class F>
-    void for_each_triangle(const Aabb<T>& box, F&& f) const;
+    /// Calls f(k, triangle) for each triangle (not in a hole) whose box overlaps `box` (local)
+    /// and that keep(triangle) accepts; keep sees the corners and normal only, so a caller's
+    /// cheap rejection skips working out the edges.
+    template <class F, class Keep = detail::KeepAll>
+    void for_each_triangle(const Aabb<T>& box, F&& f, Keep keep = {}) const;
     /// The nearest hit of a ray (local frame) on the surface from either side, with the triangle.
     std::optional<std::pair<RayHit<T>, std::uint32_t>> raycast(const Ray<T>& ray) const;
     std::size_t memory_bytes() const { return heights_.capacity() * sizeof(T) + holes_.capacity(); }
@@ -62,6 +64,8 @@ private:
         return ci >= 0 && cj >= 0 && ci < std::int64_t(columns_) - 1 && cj < std::int64_t(rows_) - 1 &&
                !hole(static_cast<std::uint32_t>(ci), static_cast<std::uint32_t>(cj));
     }
+    MeshTriangle<T> corners(std::uint32_t k) const;  ///< triangle k without its edges' data
+    void add_edges(std::uint32_t k, MeshTriangle<T>& t) const;
     /// Cell range [lo, hi] (inclusive) along one axis covering [a, b] in local coordinates.
     bool cell_range(T a, T b, T origin, std::uint32_t samples, std::uint32_t& lo, std::uint32_t& hi) const;
 
@@ -100,11 +104,20 @@ HeightField<T>::HeightField(std::uint32_t columns, std::uint32_t rows, std::vect
 }
 
 template <class T>
-MeshTriangle<T> HeightField<T>::triangle(std::uint32_t k) const {
+MeshTriangle<T> HeightField<T>::corners(std::uint32_t k) const {
+    const std::uint32_t cell = k / 2, i = cell % (columns_ - 1), j = cell / (columns_ - 1);
+    MeshTriangle<T> t;
+    t.v[0] = sample(i, j);
+    t.v[1] = k % 2 == 0 ? sample(i, j + 1) : sample(i + 1, j + 1);
+    t.v[2] = k % 2 == 0 ? sample(i + 1, j + 1) : sample(i + 1, j);
+    t.normal = detail::triangle_normal(t.v[0], t.v[1], t.v[2]);
+    return t;
+}
+
+template <class T>
+void HeightField<T>::add_edges(std::uint32_t k, MeshTriangle<T>& t) const {
     const std::uint32_t cell = k / 2, s = k % 2;
     const std::uint32_t i = cell % (columns_ - 1), j = cell / (columns_ - 1);
-    const Vec3<T> p00 = sample(i, j), p01 = sample(i, j + 1), p11 = sample(i + 1, j + 1), p10 = sample(i + 1, j);
-    MeshTriangle<T> t;
     // Per edge: the neighbour's cell and its third corner (the sample across the edge).
     const std::int64_t ci = i, cj = j;
     auto across = [&](std::int64_t ni, std::int64_t nj, std::int64_t wi, std::int64_t wj) {
@@ -113,18 +126,15 @@ MeshTriangle<T> HeightField<T>::triangle(std::uint32_t k) const {
                    : std::nullopt;
     };
     std::optional<Vec3<T>> w[3];
-    if (s == 0) {
-        t.v[0] = p00, t.v[1] = p01, t.v[2] = p11;
+    if (s == 0) {                                   // p00, p01, p11
         w[0] = across(ci - 1, cj, ci - 1, cj);      // p00 → p01: the cell to the left, its (i − 1, j)
         w[1] = across(ci, cj + 1, ci + 1, cj + 2);  // p01 → p11: the cell above, its (i + 1, j + 2)
         w[2] = across(ci, cj, ci + 1, cj);          // p11 → p00: the other half, p10
-    } else {
-        t.v[0] = p00, t.v[1] = p11, t.v[2] = p10;
+    } else {                                        // p00, p11, p10
         w[0] = across(ci, cj, ci, cj + 1);          // p00 → p11: the other half, p01
         w[1] = across(ci + 1, cj, ci + 2, cj + 1);  // p11 → p10: the cell to the right, its (i + 2, j + 1)
         w[2] = across(ci, cj - 1, ci, cj - 1);      // p10 → p00: the cell below, its (i, j − 1)
     }
-    t.normal = detail::triangle_normal(t.v[0], t.v[1], t.v[2]);
     t.active_edges = 0;
     for (int e = 0; e < 3; ++e) {
         const Vec3<T>& p = t.v[e];
@@ -133,6 +143,12 @@ MeshTriangle<T> HeightField<T>::triangle(std::uint32_t k) const {
         if (!w[e] || detail::edge_is_active(t.normal, p, q, *w[e]))
             t.active_edges = static_cast<std::uint8_t>(t.active_edges | (1u << e));
     }
+}
+
+template <class T>
+MeshTriangle<T> HeightField<T>::triangle(std::uint32_t k) const {
+    MeshTriangle<T> t = corners(k);
+    add_edges(k, t);
     return t;
 }
 
@@ -147,8 +163,8 @@ bool HeightField<T>::cell_range(T a, T b, T origin, std::uint32_t samples, std::
 }
 
 template <class T>
-template <class F>
-void HeightField<T>::for_each_triangle(const Aabb<T>& box, F&& f) const {
+template <class F, class Keep>
+void HeightField<T>::for_each_triangle(const Aabb<T>& box, F&& f, Keep keep) const {
     if (!overlaps(box, bounds_)) return;
     std::uint32_t i0, i1, j0, j1;
     if (!cell_range(box.min.x, box.max.x, origin_x_, columns_, i0, i1) ||
@@ -160,9 +176,12 @@ void HeightField<T>::for_each_triangle(const Aabb<T>& box, F&& f) const {
             const T low = std::min({height(i, j), height(i + 1, j), height(i, j + 1), height(i + 1, j + 1)});
             const T high = std::max({height(i, j), height(i + 1, j), height(i, j + 1), height(i + 1, j + 1)});
             if (low > box.max.y || high < box.min.y) continue;
-            const std::uint32_t k = 2 * (j * (columns_ - 1) + i);
-            f(k, triangle(k));
-            f(k + 1, triangle(k + 1));
+            for (std::uint32_t k = 2 * (j * (columns_ - 1) + i), last = k + 1; k <= last; ++k) {
+                MeshTriangle<T> t = corners(k);
+                if (!keep(t)) continue;  // before the neighbours' normals: the costly part
+                add_edges(k, t);
+                f(k, t);
+            }
         }
 }
 

@@ -43,10 +43,11 @@ Aabb<T> world_bounds(const MeshShape<T>& m, const Transform<T>& t) {
     return Aabb<T>::from_center(t.apply(local.center()), abs_r * local.half_extents());
 }
 
-/// Calls f(k, triangle) for each triangle (local frame) whose box overlaps `local_box`.
-template <class T, class F>
-void for_each_triangle(const MeshShape<T>& m, const Aabb<T>& local_box, F&& f) {
-    std::visit([&](const auto& mesh) { mesh.for_each_triangle(local_box, f); }, m);
+/// Calls f(k, triangle) for each triangle (local frame) whose box overlaps `local_box` and that
+/// keep(triangle) accepts (keep may see the triangle without its edges' data).
+template <class T, class F, class Keep = detail::KeepAll>
+void for_each_triangle(const MeshShape<T>& m, const Aabb<T>& local_box, F&& f, Keep keep = {}) {
+    std::visit([&](const auto& mesh) { mesh.for_each_triangle(local_box, f, keep); }, m);
 }
 
 /// The nearest hit of a world ray on mesh m placed by `pose` (either side of a triangle), with

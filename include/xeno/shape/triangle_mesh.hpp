@@ -52,6 +52,14 @@ Vec3<T> triangle_normal(const Vec3<T>& a, const Vec3<T>& b, const Vec3<T>& c) {
     return n / len;
 }
 
+/// The default triangle filter of for_each_triangle: every triangle.
+struct KeepAll {
+    template <class Triangle>
+    bool operator()(const Triangle&) const {
+        return true;
+    }
+};
+
 /// A node of a mesh's hierarchy: a leaf holds triangles [first, first + count); an inner node
 /// (count == 0) has its children at its own index + 1 and at `first`.
 template <class T>
@@ -93,8 +101,8 @@ public:
     std::uint32_t source_index(std::uint32_t k) const { return source_[k]; }
     /// Calls f(source index, triangle) for every triangle whose box overlaps `box` (local frame),
     /// in a fixed order.
-    template <class F>
-    void for_each_triangle(const Aabb<T>& box, F&& f) const;
+    template <class F, class Keep = detail::KeepAll>
+    void for_each_triangle(const Aabb<T>& box, F&& f, Keep keep = {}) const;
     /// The nearest hit of a ray (local frame) on either side of any triangle, with the triangle.
     std::optional<std::pair<RayHit<T>, std::uint32_t>> raycast(const Ray<T>& ray) const;
     /// Bytes held, for the benchmark's memory per triangle.
@@ -275,8 +283,8 @@ std::uint32_t TriangleMesh<T>::build(std::uint32_t begin, std::uint32_t end, std
 }
 
 template <class T>
-template <class F>
-void TriangleMesh<T>::for_each_triangle(const Aabb<T>& box, F&& f) const {
+template <class F, class Keep>
+void TriangleMesh<T>::for_each_triangle(const Aabb<T>& box, F&& f, Keep keep) const {
     std::uint32_t stack[64];
     int top = 0;
     stack[top++] = 0;
@@ -288,7 +296,7 @@ void TriangleMesh<T>::for_each_triangle(const Aabb<T>& box, F&& f) const {
                 const MeshTriangle<T> t = triangle(k);
                 Aabb<T> tb;
                 for (const Vec3<T>& v : t.v) tb.merge(v);
-                if (overlaps(tb, box)) f(source_[k], t);
+                if (overlaps(tb, box) && keep(t)) f(source_[k], t);
             }
             continue;
         }
