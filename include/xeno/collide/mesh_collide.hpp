@@ -97,11 +97,12 @@ void drop_points_beyond_edges(const MeshTriangle<T>& t, int edges, ContactManifo
 /// front or behind) or beyond one of its edges in its plane: a separating axis, found with at
 /// most five support calls, so the triangles under a body's box that it does not reach cost no
 /// MPR. Exact: a pair it rejects is more than `margin` apart, which MPR would have found too.
+/// `r` is the pose's rotation as a matrix, made once per body, not per triangle.
 template <class S>
 bool separated_from_triangle(const MeshTriangle<typename S::scalar_type>& t, const S& convex,
-                             const Transform<typename S::scalar_type>& pose, typename S::scalar_type margin) {
+                             const Transform<typename S::scalar_type>& pose, const Mat3<typename S::scalar_type>& r,
+                             typename S::scalar_type margin) {
     using T = typename S::scalar_type;
-    const Mat3<T> r = to_matrix(pose.orientation);
     const auto extreme = [&](const Vec3<T>& d) { return r * convex.support(transposed_transform(r, d)) + pose.position; };
     if (dot(extreme(-t.normal) - t.v[0], t.normal) > margin) return true;  // wholly in front
     if (dot(extreme(t.normal) - t.v[0], t.normal) < -margin) return true;  // wholly behind
@@ -214,8 +215,9 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
     std::vector<detail::NormalGroup<T>> groups;
     std::visit(
         [&](const auto& shape) {
+            const Mat3<T> r = to_matrix(pose.orientation);
             const auto reaches = [&](const MeshTriangle<T>& t) {
-                return !detail::separated_from_triangle(t, shape, pose, margin);
+                return !detail::separated_from_triangle(t, shape, pose, r, margin);
             };
             for_each_triangle(
                 m, box,
@@ -258,12 +260,13 @@ bool intersect_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const 
                     const Transform<T>& pose_convex) {
     const Transform<T> pose = inverse(pose_mesh) * pose_convex;
     const Vec3<T> centre = pose.apply(interior_point(convex));
+    const Mat3<T> r = to_matrix(pose.orientation);
     bool hit = false;
     std::visit(
         [&](const auto& shape) {
             using S = std::decay_t<decltype(shape)>;
             for_each_triangle(m, world_bounds(convex, pose), [&](std::uint32_t, const MeshTriangle<T>& t) {
-                if (hit || detail::separated_from_triangle(t, shape, pose, T(0))) return;
+                if (hit || detail::separated_from_triangle(t, shape, pose, r, T(0))) return;
                 const Triangle<T> tri(t, detail::closest_point_on_triangle(centre, t.v[0], t.v[1], t.v[2]));
                 hit = detail::mpr(MinkowskiDifference<Triangle<T>, S>(tri, Transform<T>{}, shape, pose), true).hit;
             });
