@@ -35,6 +35,7 @@
 #include "broadphase/pair.hpp"
 #include "broadphase/sweep_and_prune.hpp"
 #include "collide/box_box.hpp"
+#include "collide/box_triangle.hpp"
 #include "collide/collide.hpp"
 #include "collide/face_clip.hpp"
 #include "collide/mesh_collide.hpp"

@@ -5,7 +5,7 @@
 //   1. the triangles under the convex's box (grown by the margin), found in the mesh's frame;
 //   2. each collided like any convex pair (MPR, least depth, normal refinement, face clipping),
 //      the triangle being a flat convex shape whose MPR start point is its point nearest the
-//      convex's centre (triangle.hpp);
+//      convex's centre (triangle.hpp); a box by separating axes instead (box_triangle.hpp);
 //   3. internal edges: a normal that comes from an edge or a corner the neighbours cover (a
 //      coplanar or concave neighbour: triangle.hpp, "active_edges"), or that turns past the
 //      neighbour's normal at a convex edge, is replaced by the triangle's own normal and the
@@ -21,6 +21,7 @@
 
 #include "../shape/mesh_shape.hpp"
 #include "../shape/triangle.hpp"
+#include "box_triangle.hpp"
 #include "collide.hpp"
 #include "shape_cast.hpp"
 
@@ -128,8 +129,13 @@ ContactManifold<typename S::scalar_type> triangle_manifold(const MeshTriangle<ty
     // Round shapes touch in single points that must sit exactly under their centres (a rolling
     // sphere is otherwise braked): their points on the surfaces (collide()'s contract). The
     // others' manifolds come from face clipping; MPR's cheaper points are only its fallback.
+    // A box, the most common body, takes the closed-form separating-axis test (box_triangle.hpp).
     constexpr bool round = std::is_same_v<S, Sphere<T>> || std::is_same_v<S, Capsule<T>>;
-    if (!refined_contact<round>(md, n, h, pa, pb, exact_above)) return {};
+    if constexpr (std::is_same_v<S, Box<T>>) {
+        if (!box_triangle_axis(md, n, h, pa, pb)) return {};
+    } else if (!refined_contact<round>(md, n, h, pa, pb, exact_above)) {
+        return {};
+    }
     if (dot(n, t.normal) < T(0)) return {};  // out through the back
     const bool ghost = dot(n, t.normal) < T(1) - T(1e-6) && is_ghost_normal(t, n, T(1e-3) * tri.bounding_radius());
     if (ghost) {
