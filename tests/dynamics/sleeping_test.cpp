@@ -221,3 +221,31 @@ TEST_CASE_TEMPLATE("a body reference stays valid while bodies are created, also 
     CHECK(seen != nullptr);
     CHECK(same);
 }
+
+TEST_CASE_TEMPLATE("two boxes resting a few millimetres apart fall asleep and stay asleep", T, float, double) {
+    // Within the slop (5 mm) either box awake wakes the other, as it must (its contact could
+    // close this step). Dropped 0.2 m, the second box settles later than the first, so their sleep
+    // clocks differ: as two islands they woke each other in turn for ever (157 wake-ups in 20 s).
+    for (const T gap : {T(0.001), T(0.002), T(0.004), T(0.02)}) {
+        World<T> w(with_sleeping<T>(true));
+        add_floor(w);
+        BodyDef<T> d;
+        d.position = {T(0), T(0.5), T(0)};
+        const BodyId first = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+        d.position = {T(1) + gap, T(0.7), T(0)};
+        const BodyId second = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+        int wake_ups = 0, last_awake = 0;
+        bool was_awake[2] = {true, true};
+        test::simulate(w, T(20), [&](int step) {
+            const bool awake[2] = {w.body(first).awake(), w.body(second).awake()};
+            for (int i = 0; i < 2; ++i) wake_ups += (awake[i] && !was_awake[i]) ? 1 : 0, was_awake[i] = awake[i];
+            if (awake[0] || awake[1]) last_awake = step;
+        });
+        CAPTURE(gap);
+        CHECK(wake_ups == 0);
+        CHECK(last_awake < 120);  // asleep within 2 s, as a lone box
+        CHECK(!w.body(first).awake());
+        CHECK(!w.body(second).awake());
+        CHECK(std::abs(w.body(second).position().x - w.body(first).position().x - T(1) - gap) < T(1e-3));
+    }
+}

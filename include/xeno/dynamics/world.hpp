@@ -489,6 +489,7 @@ private:
     void narrow_phase(T dt);
     void wake_touched_islands(T dt);
     bool closes_within_step(const Contact<T>& c, T dt) const;
+    bool within_slop(const Contact<T>& c) const;
     void prepare(T dt);
     detail::ContactConstraint<T> contact_row(std::uint32_t m, const detail::Softness<T>& soft,
                                              const detail::Softness<T>& soft_static) const;
@@ -1250,8 +1251,24 @@ bool World<T>::closes_within_step(const Contact<T>& c, T dt) const {
     return false;
 }
 
+/// Whether some point of the contact is within the slop of touching at the bodies' poses now:
+/// close enough that one body, awake, wakes the other (closes_within_step).
+template <class T>
+bool World<T>::within_slop(const Contact<T>& c) const {
+    const Body<T>& a = bodies_[c.a.index];
+    const Body<T>& b = bodies_[c.b.index];
+    for (int i = 0; i < c.manifold.count; ++i) {
+        const ContactPoint<T>& cp = c.manifold.points[static_cast<std::size_t>(i)];
+        if (dot(b.world_point(cp.local_b) - a.world_point(cp.local_a), c.manifold.normal) <= settings_.linear_slop) return true;
+    }
+    return false;
+}
+
 /// Islands: dynamic bodies joined by touching (non-sensor) contacts and by joints, as a
-/// union–find over body slots in island_parent_ (linear in bodies, contacts and joints).
+/// union–find over body slots in island_parent_ (linear in bodies, contacts and joints). A contact
+/// within the slop of touching joins too: either body awake wakes the other (closes_within_step),
+/// so apart they would take turns waking each other for ever (two boxes resting 2 mm apart, one
+/// dropped a little later than the other, did); joined they share one sleep clock.
 template <class T>
 void World<T>::build_islands() {
     std::vector<std::uint32_t>& parent = island_parent_;
@@ -1259,7 +1276,7 @@ void World<T>::build_islands() {
     std::iota(parent.begin(), parent.end(), 0u);
     auto dynamic = [&](std::uint32_t slot) { return bodies_[slot].type_ == BodyType::dynamic; };
     for (const Contact<T>& c : contacts_)
-        if (c.touching && !c.sensor && dynamic(c.a.index) && dynamic(c.b.index))
+        if (!c.sensor && c.manifold.count > 0 && dynamic(c.a.index) && dynamic(c.b.index) && (c.touching || within_slop(c)))
             parent[island_root(c.a.index)] = island_root(c.b.index);
     for (const Joint<T>& j : joints_)
         if (joint_active(j) && dynamic(j.a.index) && dynamic(j.b.index)) parent[island_root(j.a.index)] = island_root(j.b.index);
