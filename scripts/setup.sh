@@ -2,14 +2,23 @@
 # Installs what xeno's tests, benchmarks and examples need on Debian/Ubuntu, only when missing:
 # idempotent, and silent when everything is already there. The library itself needs none of it.
 #   scripts/setup.sh test   compilers, CMake, clang-format, doctest, Catch2, OSMesa, libpng, libccd, Bullet
-#   scripts/setup.sh main   the same plus ffmpeg (GIF/MP4) and gnuplot (plots)
+#   scripts/setup.sh test   compilers, CMake, clang-format, doctest, Catch2, OSMesa, libpng, libccd, Bullet,
+#                           and what the browser page's test needs (below)
+#   scripts/setup.sh main   the first list plus ffmpeg (GIF/MP4) and gnuplot (plots)
+#   scripts/setup.sh web    the browser page: Emscripten (with node-acorn for its optimizer), Chromium
+#                           (headless, for the test) and Python's websocket client (the test's
+#                           DevTools connection)
 set -euo pipefail
 
+kind=${1:-test}
 packages=(cmake ninja-build g++ clang libclang-rt-14-dev clang-format pkg-config
           doctest-dev catch2 libosmesa6-dev libpng-dev libccd-dev libbullet-dev)
-if [[ "${1:-test}" == main ]]; then
-  packages+=(ffmpeg gnuplot-nox)
-fi
+web=(emscripten node-acorn chromium python3-websocket)
+case "$kind" in
+  main) packages+=(ffmpeg gnuplot-nox) ;;
+  web) packages=(g++ python3 "${web[@]}") ;;
+  test) packages+=("${web[@]}") ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -14,6 +14,7 @@
 #   5. the README's example compiled by the consumer projects: plain -I include,
 #      add_subdirectory(xeno) and find_package(xeno CONFIG REQUIRED) after cmake --install, each
 #      header-only and in compiled mode (xeno::compiled), and in xeno::f32 with -Werror
+#   6. the browser page (scripts/web.sh test): built with Emscripten, driven in headless Chromium
 # One sanitizer build, with clang++, serves both the second compiler and the memory and UB checks
 # (they were two full builds of the tests, a clang++ Release one and a g++ sanitizer one).
 # XENO_TEST_QUICK=1 runs only step 1 without the slow label (for iterating).
@@ -86,6 +87,9 @@ TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" "$build/tsan/xeno_paralle
 
 step "consumer projects compile the README's example"
 tests/consumers/run.sh "$build/consumers"
+
+step "the browser page: built with Emscripten, tested in headless Chromium"
+XENO_BUILD_DIR="$build" XENO_WEB_NATIVE_BENCH="$build/gcc/examples/xeno_web_native_bench" scripts/web.sh test
 
 step "all passed"
 printf '\nTime per step (s):\n'

@@ -5,7 +5,8 @@
 //   xeno_render --list
 //   xeno_render --frames 120 --out out vertex-face        -> out/vertex-face/frame_0000.png ...
 //   xeno_render --no-images --states states.csv all        -> poses only, no GL context
-// Per scenario: frame 0 is the initial state; between frames the simulation steps 1/fps seconds.
+// Per scenario: frame 0 is the initial state; between frames the simulation steps 1/fps seconds;
+// the scenario says how long its story takes (scenes::Scene::seconds) unless --frames is given.
 // With ffmpeg on PATH the frames also become <scenario>.gif (320 px wide) and <scenario>.mp4.
 // Exit status: 0 success, 1 a scenario or an output failed, 2 bad command line (options.hpp).
 #include "render/options.hpp"
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -136,11 +138,13 @@ void run_scenario(const Run& run, const Scenario& scenario) {
     std::unique_ptr<Simulation> sim = scenario.make(o.use_float);
     if (!sim) throw std::runtime_error("the scenario's factory returned nothing");
 
-    Progress progress(scenario.name, o.frames);
+    // The scenario's own length (frame 0 is the start, so seconds × fps + 1 frames) unless --frames.
+    const int frames = o.frames > 0 ? o.frames : 1 + static_cast<int>(std::lround(sim->seconds() * o.fps));
+    Progress progress(scenario.name, frames);
     double step_ms = 0, render_ms = 0, png_ms = 0;
     const double dt = 1.0 / o.fps;
     const double orbit_total = xeno::radians(o.orbit_degrees);
-    for (int frame = 0; frame < o.frames; ++frame) {
+    for (int frame = 0; frame < frames; ++frame) {
         if (frame > 0) {
             const Clock::time_point start = Clock::now();
             sim->step(dt);
@@ -149,7 +153,7 @@ void run_scenario(const Run& run, const Scenario& scenario) {
         if (run.states) write_states(run.states, scenario.name, frame, frame * dt, sim->states(), o.use_float);
         if (run.renderer) {
             Clock::time_point start = Clock::now();
-            const double turn = o.frames > 1 ? orbit_total * frame / (o.frames - 1) : 0.0;
+            const double turn = frames > 1 ? orbit_total * frame / (frames - 1) : 0.0;
             run.renderer->begin_frame(orbit(sim->camera(), turn));
             sim->draw(*run.renderer, o.contacts);
             run.renderer->end_frame();
@@ -167,7 +171,7 @@ void run_scenario(const Run& run, const Scenario& scenario) {
     }
 
     char summary[160];
-    const double n = o.frames, steps = std::max(1, o.frames - 1);
+    const double n = frames, steps = std::max(1, frames - 1);
     if (run.renderer)
         std::snprintf(summary, sizeof summary, "  render %.1f ms, png %.1f ms, step %.2f ms per frame", render_ms / n, png_ms / n,
                       step_ms / steps);
@@ -179,11 +183,11 @@ void run_scenario(const Run& run, const Scenario& scenario) {
         char video[64];
         std::snprintf(video, sizeof video, ", %s in %.1f s", ok ? "gif+mp4" : "ffmpeg FAILED", milliseconds_since(start) / 1000);
         line += video;
-        progress.finish(o.frames, line);
+        progress.finish(frames, line);
         if (!ok) throw std::runtime_error("ffmpeg could not make " + scenario.name + ".gif/.mp4 in " + dir.string());
         return;
     }
-    progress.finish(o.frames, line);
+    progress.finish(frames, line);
 }
 
 int usage_error(const std::string& message) {

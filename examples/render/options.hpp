@@ -22,17 +22,17 @@ public:
 /// Everything the command line can say.
 struct Options {
     std::vector<std::string> scenarios;  ///< positional names as given ("all" included); empty = all
-    int frames = 120;                    ///< images (and state rows) per scenario, frame 0 = initial state
-    double fps = 60;                     ///< frames per simulated second: each frame steps 1/fps s
-    int width = 640, height = 480;       ///< image size in pixels
-    bool use_float = false;              ///< --float: World<float>; default double
-    std::string out_dir = "out";         ///< frames go to out_dir/<scenario>/frame_0000.png ...
-    bool contacts = false;               ///< draw contact points and normals
-    double orbit_degrees = 0;            ///< the camera turns this far about +y over the run
-    std::string states_path;             ///< CSV of every body's pose per frame; empty = none
-    bool images = true;                  ///< false with --no-images: no OSMesa context, no files but states
-    bool list = false;                   ///< --list: print the scenarios and exit
-    bool help = false;                   ///< --help: print usage and exit
+    int frames = 0;   ///< images (and state rows) per scenario, frame 0 = initial state; 0 = the scenario's own length
+    double fps = 60;  ///< frames per simulated second: each frame steps 1/fps s
+    int width = 640, height = 480;  ///< image size in pixels
+    bool use_float = false;         ///< --float: World<float>; default double
+    std::string out_dir = "out";    ///< frames go to out_dir/<scenario>/frame_0000.png ...
+    bool contacts = false;          ///< draw contact points and normals
+    double orbit_degrees = 0;       ///< the camera turns this far about +y over the run
+    std::string states_path;        ///< CSV of every body's pose per frame; empty = none
+    bool images = true;             ///< false with --no-images: no OSMesa context, no files but states
+    bool list = false;              ///< --list: print the scenarios and exit
+    bool help = false;              ///< --help: print usage and exit
 };
 
 /// Parses argv[1 .. argc); options may be given as "--frames 30" or "--frames=30".

@@ -31,6 +31,7 @@ public:
     virtual void draw(Renderer& out, bool contacts) const = 0;  // bodies (and contact points/normals if asked)
     virtual std::vector<BodyState> states() const = 0;          // every body's pose, for CSV
     virtual Camera camera() const = 0;                          // the scenario's suggested view
+    virtual double seconds() const = 0;                         // how long its story takes (the default length)
 };
 
 struct Scenario {

@@ -199,6 +199,7 @@ Scene character(World<T>& world) {
     };
     s.eye = {4, 6, 12};
     s.target = {5, 0.5, 0};
+    s.seconds = 12.5;  // the walk (6.5 s) and one 6 s platform ride
     return s;
 }
 

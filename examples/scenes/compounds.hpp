@@ -52,6 +52,7 @@ Scene compound_stack(World<T>& world) {
     }
     s.eye = {2, 3, 6};
     s.target = {0, 0.9, 0};
+    s.seconds = 2;  // the stacks settle and stand
     return s;
 }
 

@@ -39,6 +39,7 @@ Scene sleeping_pile(World<T>& world) {
                                    rng.rotation<T>()));
     s.eye = {6, 5, 8};
     s.target = {0, 0.8, 0};
+    s.seconds = 4.5;  // the pile settles and falls asleep (3 s) and sits greyed
     return s;
 }
 
@@ -63,6 +64,7 @@ Scene ray_fan(World<T>& world) {
                                Quat<T>::from_axis_angle(Vec3<T>::unit_y(), T(0.6))));
     s.eye = {0, 6, -9};
     s.target = {0, 0.5, 1};
+    s.seconds = 3;  // the bodies land under the fan
     return s;
 }
 
@@ -91,6 +93,7 @@ Scene bullet(World<T>& world) {
     s.bodies.push_back(world.create_body(Box<T>(T(0.05), T(0.05), T(0.05)), d));
     s.eye = {2, 4, 12};
     s.target = {4, 1.2, 0};
+    s.seconds = 2;  // the shot and the box at rest at the wall
     return s;
 }
 
@@ -108,6 +111,7 @@ Scene pendulum(World<T>& world) {
     world.create_joint(JointDef<T>::ball(top, s.bodies.back(), pivot));
     s.eye = {0, 3, 8};
     s.target = {0, 2.5, 0};
+    s.seconds = 6;  // two swings (period 2π√(L/g) = 2.84 s)
     return s;
 }
 
@@ -130,6 +134,7 @@ Scene chain(World<T>& world) {
     }
     s.eye = {4, 7, 18};
     s.target = {2, 6, 0};
+    s.seconds = 6;  // the chain falls and swings twice
     return s;
 }
 
@@ -150,6 +155,7 @@ Scene hinged_door(World<T>& world) {
     world.create_joint(hinge);
     s.eye = {2.5, 2.5, 4};
     s.target = {0.2, 1, -0.3};
+    s.seconds = 3;  // the swing, the stop, the bounce back
     return s;
 }
 
@@ -204,6 +210,7 @@ Scene ragdoll(World<T>& world, const Vec3<T>& at = {T(0), T(3), T(0)}) {
     limited_hinge(thigh_r, shin_r, {T(0.12), T(-0.89), T(0)}, T(-2.5), T(0));
     s.eye = {1.5, 2.2, 5};
     s.target = {0.2, 0.6, 0};
+    s.seconds = 3.5;  // the fall down the step, then at rest (2.4 s)
     return s;
 }
 

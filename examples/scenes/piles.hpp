@@ -33,6 +33,7 @@ Scene rain(World<T>& world, int count = 120, std::uint64_t seed = 7) {
     }
     s.eye = {9, 7, 12};
     s.target = {0, 1.5, 0};
+    s.seconds = 5;  // the rain lands and the pile spreads
     return s;
 }
 
@@ -68,6 +69,7 @@ Scene mixed_pile(World<T>& world, int count = 60, std::uint64_t seed = 11) {
     }
     s.eye = {6, 6, 9};
     s.target = {0, 0.8, 0};
+    s.seconds = 5;  // the pile lands and settles in the pen
     return s;
 }
 
@@ -97,6 +99,7 @@ Scene incline(World<T>& world) {
     }
     s.eye = {-3, 5, 11};
     s.target = {0, 1.5, 0};
+    s.seconds = 6.5;  // the slippery boxes slide off; the others stop (5.6 s)
     return s;
 }
 

@@ -14,12 +14,16 @@
 
 namespace xeno::scenes {
 
-/// Bodies of interest and a suggested view (camera position and target, metres).
+/// Bodies of interest, a suggested view (camera position and target, metres) and length.
 struct Scene {
     std::vector<BodyId> bodies;  ///< the scene's dynamic bodies, in creation order
     BodyId ground;               ///< the static ground, if any (renderers draw their own floor)
     f64::Vec3 eye{8, 5, 12};
     f64::Vec3 target{0, 1, 0};
+    /// How long the scene's story takes (s): what a viewer should see, e.g. the dominoes to the
+    /// last one, the pyramid settled, the ragdoll at rest. The renderer's and the page's default
+    /// length.
+    double seconds = 3;
     /// For scenes that drive bodies themselves (the character): called before every step with
     /// the step's length (s). Programs that step scenes call it when it is set.
     std::function<void(double)> before_step;

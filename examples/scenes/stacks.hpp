@@ -20,6 +20,7 @@ Scene column(World<T>& world, int height = 10) {
         s.bodies.push_back(add_box(world, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(0.5) + T(i), T(0)}));
     s.eye = {7, 0.6 * height, 10};
     s.target = {0, 0.45 * height, 0};
+    s.seconds = 2;  // the column stands
     return s;
 }
 
@@ -37,6 +38,7 @@ Scene pyramid(World<T>& world, int base = 20) {
     }
     s.eye = {0.3 * base, 0.55 * base, 1.4 * base};
     s.target = {0, 0.35 * base, 0};
+    s.seconds = 3;  // the pyramid settles and stands
     return s;
 }
 
@@ -50,6 +52,7 @@ Scene heavy_on_light(World<T>& world) {
         add_box(world, Vec3<T>{T(0.5), T(0.5), T(0.5)}, Vec3<T>{T(0), T(1.5), T(0)}, Quat<T>::identity(), T(40000)));
     s.eye = {4, 3, 6};
     s.target = {0, 1, 0};
+    s.seconds = 2;  // the light box holds the heavy one
     return s;
 }
 

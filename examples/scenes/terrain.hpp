@@ -88,6 +88,7 @@ Scene terrain(World<T>& world) {
     }
     s.eye = {20, 12, 24};
     s.target = {3, 1.5, 3};
+    s.seconds = 8;  // the bodies tumble down the hill and spread over its foot
     return s;
 }
 
@@ -144,6 +145,7 @@ Scene mesh_bowl(World<T>& world) {
     }
     s.eye = {0, 12, 17};
     s.target = {0, 2.5, 0};
+    s.seconds = 6;  // the bodies pour in and settle (5 s)
     return s;
 }
 

@@ -80,6 +80,7 @@ Scene contact_kind(World<T>& world, ContactKind kind) {
     s.bodies.push_back(world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), falling));
     s.eye = {3.5, 2.6, 4.5};
     s.target = {0, 1.2, 0};
+    s.seconds = 2.5;  // the fall, the tumble and the rest (1.6–2 s)
     return s;
 }
 
@@ -94,6 +95,7 @@ Scene seesaw(World<T>& world) {
     s.bodies.push_back(add_box(world, Vec3<T>{T(0.25), T(0.25), T(0.25)}, Vec3<T>{T(1.6), T(1.15), T(0)}));            // block
     s.eye = {2, 2.5, 6};
     s.target = {0.3, 0.7, 0};
+    s.seconds = 2;  // the seesaw tips and settles (0.9 s)
     return s;
 }
 
@@ -110,9 +112,10 @@ Scene dominoes(World<T>& world, int count = 24) {
         if (i == 0) def.angular_velocity = {T(0), T(0), T(-2.5)};  // tipped towards +x
         s.bodies.push_back(world.create_body(Box<T>(half), def));
     }
-    const double mid = 0.25 * (count - 1);
-    s.eye = {mid - 2, 3.5, 9};
-    s.target = {mid, 0.4, 0};
+    const double mid = 0.25 * count;  // the row and where its last domino lands
+    s.eye = {mid - 2, 4, 0.45 * count + 1.5};
+    s.target = {mid, 0.3, 0};
+    s.seconds = 0.2 * count + 0.5;  // the chain runs at about 2.5 m/s (24: the last one down at 4.4 s)
     return s;
 }
 
