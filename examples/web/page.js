@@ -131,7 +131,7 @@ const xenoPage = (function () {
   // --- numbers -------------------------------------------------------------------------------
   function showStats() {
     const p = state.precision === 0 ? 0 : 1;
-    let text = `t ${Module._xw_time().toFixed(2)} s   ${Module._xw_step_ms().toFixed(2)} ms/step   ` +
+    let text = `t ${Module._xw_time().toFixed(2)} s (story ${Module._xw_camera(6).toFixed(1)} s)   ${Module._xw_step_ms().toFixed(2)} ms/step   ` +
                `bodies ${Module._xw_stat(p, 0)}   contacts ${Module._xw_stat(p, 1)}   awake ${Module._xw_stat(p, 2)}`;
     if (state.precision === 2) text += `   largest float-double position difference ${Module._xw_max_difference().toExponential(2)} m`;
     if (state.benchmark) text += "\n" + state.benchmark;
