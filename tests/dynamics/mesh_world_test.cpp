@@ -173,10 +173,9 @@ TEST_CASE_TEMPLATE("a sphere rolls across a mesh diagonally without losing speed
     CHECK(std::abs(final_speed[1] - final_speed[2]) < T(0.005) * final_speed[2]);
 }
 
-TEST_CASE_TEMPLATE("a box resting on a corner shared by six triangles stays at rest", C, XENO_TEST_CONFIGS) {
-    using T = typename C::T;
-    // A flat hexagonal fan around the origin: every edge through the centre is between coplanar
-    // triangles, so the corner is inactive and must give no sideways push.
+/// A flat hexagonal fan of six triangles, 3 m in radius, around the origin in the plane y = 0.
+template <class T>
+TriangleMesh<T> hexagon_fan() {
     std::vector<Vec3<T>> v{{T(0), T(0), T(0)}};
     std::vector<Tri> tris;
     for (int i = 0; i < 6; ++i) {
@@ -184,10 +183,17 @@ TEST_CASE_TEMPLATE("a box resting on a corner shared by six triangles stays at r
         v.push_back({T(3) * std::cos(a), T(0), T(3) * std::sin(a)});
         tris.push_back({0u, 1u + static_cast<std::uint32_t>((i + 1) % 6), 1u + static_cast<std::uint32_t>(i)});
     }
+    return TriangleMesh<T>(v, tris);
+}
+
+TEST_CASE_TEMPLATE("a box resting on a corner shared by six triangles stays at rest", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    // Every edge through the fan's centre is between coplanar triangles, so the corner is
+    // inactive and must give no sideways push.
     World<T> w(C::settings());
     BodyDef<T> ground;
     ground.type = BodyType::static_body;
-    w.create_body(TriangleMesh<T>(v, tris), ground);
+    w.create_body(hexagon_fan<T>(), ground);
     BodyDef<T> d;
     d.position = {T(0), T(0.5), T(0)};
     d.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_y(), T(0.3));
@@ -204,18 +210,11 @@ TEST_CASE_TEMPLATE("a small box slides over the corner shared by six triangles w
     // The same fan; a 20 cm box slides across its centre at 1.5 m/s on slippery ground, turned
     // 20° so its corners cross the six inner edges at different moments. The inner edges and
     // the centre corner are inactive: no normal from them may lift, turn or deflect it.
-    std::vector<Vec3<T>> v{{T(0), T(0), T(0)}};
-    std::vector<Tri> tris;
-    for (int i = 0; i < 6; ++i) {
-        const T a = static_cast<T>(i) * ScalarTraits<T>::pi / T(3);
-        v.push_back({T(3) * std::cos(a), T(0), T(3) * std::sin(a)});
-        tris.push_back({0u, 1u + static_cast<std::uint32_t>((i + 1) % 6), 1u + static_cast<std::uint32_t>(i)});
-    }
     World<T> w(C::settings());
     BodyDef<T> ground;
     ground.type = BodyType::static_body;
     ground.material.friction = T(0.1);
-    w.create_body(TriangleMesh<T>(v, tris), ground);
+    w.create_body(hexagon_fan<T>(), ground);
     const T yaw = T(20) * ScalarTraits<T>::pi / T(180);
     BodyDef<T> d;
     d.material.friction = T(0.1);
