@@ -7,7 +7,8 @@
 // the box's three face normals, and the nine cross products of a triangle edge with a box axis
 // (the set of Akenine-Möller's triangle–box overlap test, "Fast 3D triangle-box overlap testing",
 // JGT 2001, and of Eberly's "method of separating axes"). Each axis costs three projected
-// vertices against one projected box, about a tenth of an MPR run with its least-depth expansion.
+// vertices against one projected box; the whole test takes a quarter to a third of the time of
+// MPR with its least-depth expansion (xeno_mesh_bench: 318 ns against 1.1-1.3 us a pair).
 // Faces win ties as in box_box.hpp: the triangle's normal first, a box face only when clearly
 // shallower, an edge pair only when shallower by a slack, so a box resting on a triangle gets the
 // triangle's exact normal.
