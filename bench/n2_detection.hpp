@@ -14,9 +14,14 @@
 //                               mpr_penetration, no bounding-volume test. On the box scene the
 //                               shapes are the concrete Box<T> (no variant dispatch at all); on
 //                               the mixed scene one std::visit per pair picks the MPR instance;
+//                 brute_lanes   the same, with MPR's first test run for W pairs at once in SIMD
+//                               lanes (EarlyOut, collide/early_out.hpp; thesis 4.1 c): each body's
+//                               axes once per pass, the pairs that survive through mpr_penetration;
 //                 brute_bounds  brute_force_pairs over world boxes, then collide() per pair;
 //                 sap           SweepAndPrune, then collide() per pair;
 //                 tree          AabbTree, then collide() per pair;
+//               the pair strategies run the early-out on their pairs, W at a time, before collide()
+//               (Detector's early_out flag, on by default; off gives the pass without it).
 //   parallel    the narrow phase (for brute, the whole all-pairs loop) runs through a parallel-for
 //               the caller may supply; the default runs std::threads.
 // The world box of a body is computed inside the timed pass (it is part of a broad phase's work).
@@ -27,6 +32,7 @@
 #include <xeno/broadphase/aabb_tree.hpp>
 #include <xeno/broadphase/brute_force.hpp>
 #include <xeno/broadphase/sweep_and_prune.hpp>
+#include <xeno/collide/early_out.hpp>
 #include <xeno/collide/collide.hpp>
 #include <xeno/shape/polyhedra.hpp>
 #include <xeno/task_system.hpp>
@@ -182,12 +188,13 @@ inline ParallelFor thread_parallel_for(unsigned threads) {
     };
 }
 
-enum class Strategy { brute, brute_bounds, sap, tree };
-constexpr Strategy kStrategies[] = {Strategy::brute, Strategy::brute_bounds, Strategy::sap, Strategy::tree};
+enum class Strategy { brute, brute_lanes, brute_bounds, sap, tree };
+constexpr Strategy kStrategies[] = {Strategy::brute, Strategy::brute_lanes, Strategy::brute_bounds, Strategy::sap,
+                                    Strategy::tree};
 
-/// The strategy's name in the CSV: brute, brute_bounds, sap, tree.
+/// The strategy's name in the CSV: brute, brute_lanes, brute_bounds, sap, tree.
 inline const char* strategy_name(Strategy s) {
-    constexpr const char* names[] = {"brute", "brute_bounds", "sap", "tree"};
+    constexpr const char* names[] = {"brute", "brute_lanes", "brute_bounds", "sap", "tree"};
     return names[static_cast<int>(s)];
 }
 
@@ -210,9 +217,10 @@ struct PassResult {
 template <class T>
 class Detector {
 public:
-    /// parallel: how the narrow phase is spread (empty = on the caller); tree_margin: metres.
-    explicit Detector(Strategy strategy, ParallelFor parallel = {}, T tree_margin = T(0.1))
-        : strategy_(strategy), parallel_(std::move(parallel)), tree_(tree_margin) {}
+    /// parallel: how the narrow phase is spread (empty = on the caller); tree_margin: metres;
+    /// early_out: the pair strategies reject separated pairs W at a time before collide().
+    explicit Detector(Strategy strategy, ParallelFor parallel = {}, T tree_margin = T(0.1), bool early_out = true)
+        : strategy_(strategy), parallel_(std::move(parallel)), tree_(tree_margin), early_out_(early_out) {}
 
     /// One full pass: world boxes, broad phase, contact of every overlapping pair.
     PassResult pass(const Scene<T>& s);
@@ -230,6 +238,7 @@ private:
     void broad(const Scene<T>& s);
     void narrow(const Scene<T>& s);
     void all_pairs_mpr(const Scene<T>& s);
+    void set_bounds(const Scene<T>& s);
     void run(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body) const {
         if (parallel_) parallel_(count, body);
         else if (count > 0) body(0, count);
@@ -243,6 +252,8 @@ private:
     std::vector<ProxyPair> pairs_;
     std::vector<Penetration<T>> results_;
     std::vector<PairContact<T>> contacts_;
+    bool early_out_;
+    EarlyOut<T> bounds_;  ///< each body's rounded box in world coordinates (brute_lanes, early_out)
 };
 
 /// Seconds elapsed since start on the steady clock.
@@ -254,7 +265,7 @@ template <class T>
 PassResult Detector<T>::pass(const Scene<T>& s) {
     const auto start = std::chrono::steady_clock::now();
     PassResult r;
-    if (strategy_ == Strategy::brute) {
+    if (strategy_ == Strategy::brute || strategy_ == Strategy::brute_lanes) {
         all_pairs_mpr(s);
         r.broad_pairs = s.size() * (s.size() - (s.size() > 0 ? 1 : 0)) / 2;
     } else {
@@ -285,18 +296,38 @@ void Detector<T>::broad(const Scene<T>& s) {
         case Strategy::brute_bounds: brute_force_pairs(boxes_, pairs_); break;
         case Strategy::sap: sap_.find_pairs(boxes_, pairs_); break;
         case Strategy::tree: tree_.find_pairs(boxes_, pairs_); break;
-        case Strategy::brute: pairs_.clear(); break;
+        case Strategy::brute:
+        case Strategy::brute_lanes: pairs_.clear(); break;
     }
 }
 
 template <class T>
+void Detector<T>::set_bounds(const Scene<T>& s) {
+    bounds_.resize(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) bounds_.set(i, s.shape(i), s.poses[i]);
+}
+
+// With the early-out, pairs go W at a time through EarlyOut::apart_pairs and only the survivors
+// through collide(); the last few of a range one at a time (the same answer, bit for bit).
+template <class T>
 void Detector<T>::narrow(const Scene<T>& s) {
+    constexpr int W = EarlyOut<T>::width;
+    if (early_out_) set_bounds(s);
     results_.resize(pairs_.size());
     run(pairs_.size(), [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) {
+        const auto one = [&](std::size_t k, bool apart) {
             const ProxyPair p = pairs_[k];
-            results_[k] = collide(s.shape(p.a), s.poses[p.a], s.shape(p.b), s.poses[p.b]);
+            results_[k] = apart ? Penetration<T>{} : collide(s.shape(p.a), s.poses[p.a], s.shape(p.b), s.poses[p.b]);
+        };
+        std::size_t k = begin;
+        for (; early_out_ && k + W <= end; k += W) {
+            std::uint32_t a[W], b[W];
+            T margin[W];
+            for (int l = 0; l < W; ++l) a[l] = pairs_[k + l].a, b[l] = pairs_[k + l].b, margin[l] = T(0);
+            const unsigned apart = bounds_.template apart_pairs<W>(a, b, margin);
+            for (int l = 0; l < W; ++l) one(k + l, (apart >> l) & 1u);
         }
+        for (; k < end; ++k) one(k, early_out_ && bounds_.apart(pairs_[k].a, pairs_[k].b, T(0)));
     });
     contacts_.clear();
     for (std::size_t k = 0; k < pairs_.size(); ++k)
@@ -304,24 +335,36 @@ void Detector<T>::narrow(const Scene<T>& s) {
 }
 
 // Every pair (i, j), i < j, through MPR. Row k is processed together with row n − 1 − k so that
-// every index of the parallel-for carries the same number of pairs.
+// every index of the parallel-for carries the same number of pairs. brute_lanes first tests
+// bodies j … j + W − 1 against i in lanes and runs MPR on the survivors only.
 template <class T>
 void Detector<T>::all_pairs_mpr(const Scene<T>& s) {
+    constexpr int W = EarlyOut<T>::width;
+    const bool lanes = strategy_ == Strategy::brute_lanes;
+    if (lanes) set_bounds(s);
     const std::size_t n = s.size();
     const Box<T>* only_box = s.shapes.size() == 1 ? std::get_if<Box<T>>(&s.shapes[0]) : nullptr;
     std::mutex mutex;
     std::vector<std::pair<std::size_t, std::vector<PairContact<T>>>> chunks;
     run((n + 1) / 2, [&](std::size_t begin, std::size_t end) {
         std::vector<PairContact<T>> found;
-        auto row = [&](std::size_t i) {
+        auto pair = [&](std::size_t i, std::size_t j) {
             const Transform<T>& pi = s.poses[i];
-            for (std::size_t j = i + 1; j < n; ++j) {
-                const Penetration<T> p =
-                    only_box ? mpr_penetration(*only_box, pi, *only_box, s.poses[j])
-                             : std::visit([&](const auto& a, const auto& b) { return mpr_penetration(a, pi, b, s.poses[j]); },
-                                          s.shape(i), s.shape(j));
-                if (p.hit) found.push_back({{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)}, p});
+            const Penetration<T> p =
+                only_box ? mpr_penetration(*only_box, pi, *only_box, s.poses[j])
+                         : std::visit([&](const auto& a, const auto& b) { return mpr_penetration(a, pi, b, s.poses[j]); },
+                                      s.shape(i), s.shape(j));
+            if (p.hit) found.push_back({{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)}, p});
+        };
+        auto row = [&](std::size_t i) {
+            std::size_t j = i + 1;
+            for (; lanes && j + W <= n; j += W) {
+                unsigned survivors = ~bounds_.template apart_run<W>(i, j, T(0)) & ((1u << W) - 1u);
+                for (int l = 0; survivors != 0; ++l, survivors >>= 1)
+                    if (survivors & 1u) pair(i, j + static_cast<std::size_t>(l));
             }
+            for (; j < n; ++j)
+                if (!lanes || !bounds_.apart(i, j, T(0))) pair(i, j);
         };
         for (std::size_t k = begin; k < end; ++k) {
             row(k);

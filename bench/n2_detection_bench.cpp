@@ -38,6 +38,7 @@ struct Options {
     std::size_t max_bodies = 1000000;
     std::string out = "out";
     bool quick = false;
+    bool lanes = false;
     unsigned threads = 2;
     std::uint64_t seed = kN2Seed;
     double time_limit = 20;
@@ -45,10 +46,12 @@ struct Options {
 
 [[noreturn]] void usage(int code) {
     std::printf(
-        "usage: xeno_n2_bench [--max-bodies N] [--out DIR] [--quick] [--threads N] [--seed S] [--time-limit SEC]\n"
+        "usage: xeno_n2_bench [--max-bodies N] [--out DIR] [--quick] [--lanes] [--threads N] [--seed S] [--time-limit SEC]\n"
         "  --max-bodies N    largest scene (default 1000000; 1,000,000 runs the broad phase alone)\n"
         "  --out DIR         where n2.csv, n2_details.csv, n2_plot.dat and n2.png go (default out)\n"
         "  --quick           small scenes only (CI smoke test, a few seconds)\n"
+        "  --lanes           only the early-out's rows: brute force against brute_lanes at 3,500 boxes\n"
+        "                    in float and double, sweep and prune at 100,000 with and without it\n"
         "  --threads N       threads for the parallel narrow phase comparison (default 2)\n"
         "  --seed S          scene seed (default %llu)\n"
         "  --time-limit SEC  skip (and estimate) a brute pass predicted to take longer (default 20)\n",
@@ -67,6 +70,7 @@ Options parse(int argc, char** argv) {
         if (a == "--max-bodies") o.max_bodies = std::stoull(value());
         else if (a == "--out") o.out = value();
         else if (a == "--quick") o.quick = true;
+        else if (a == "--lanes") o.lanes = true;
         else if (a == "--threads") o.threads = static_cast<unsigned>(std::stoul(value()));
         else if (a == "--seed") o.seed = std::stoull(value());
         else if (a == "--time-limit") o.time_limit = std::stod(value());
@@ -141,11 +145,11 @@ struct ColdWarm {
 
 // Cold: the first pass of fresh detectors (3). Warm: one detector, first pass, then `frames`
 // passes each after every body moved up to 1 cm and turned up to 0.01 rad.
-ColdWarm cold_warm(Strategy strategy, const Scene<Real>& scene, bool broad_only, int frames = 5,
-                   const ParallelFor& parallel = {}) {
+ColdWarm cold_warm(Strategy strategy, const Scene<Real>& scene, bool broad_only, int frames = 5, const ParallelFor& parallel = {},
+                   bool early_out = true) {
     ColdWarm cw;
     for (int rep = 0; rep < 3; ++rep) {
-        Detector<Real> d(strategy, parallel);
+        Detector<Real> d(strategy, parallel, Real(0.1), early_out);
         const PassResult r = broad_only ? d.broad_only(scene) : d.pass(scene);
         cw.cold.push_back(r.seconds);
         cw.cold_broad.push_back(r.broad_seconds);
@@ -154,7 +158,7 @@ ColdWarm cold_warm(Strategy strategy, const Scene<Real>& scene, bool broad_only,
     }
     Scene<Real> moving = scene;
     scenes::Random rng(12345);
-    Detector<Real> d(strategy, parallel);
+    Detector<Real> d(strategy, parallel, Real(0.1), early_out);
     broad_only ? d.broad_only(moving) : d.pass(moving);
     for (int f = 0; f < frames; ++f) {
         jiggle(moving, rng, Real(0.01));
@@ -178,10 +182,67 @@ std::string shell_quote(const std::string& s) {
     return q + "'";
 }
 
+// The target the library's lanes were compiled for (wide.hpp picks the width from it).
+const char* lane_target() {
+#if defined(XENO_SIMD_AVX) && defined(__AVX2__)
+    return "AVX2 (e.g. -march=x86-64-v3)";
+#elif defined(XENO_SIMD_AVX)
+    return "AVX";
+#elif defined(XENO_SIMD_SSE2)
+    return "SSE2 (generic x86-64)";
+#else
+    return "no SIMD (portable lanes)";
+#endif
+}
+
+// --lanes: the early-out's rows alone (brute force with and without MPR's first test in lanes,
+// float and double; sweep and prune at 100,000 boxes with and without it), for a second build
+// with other instructions (scripts/main.sh runs it from xeno_n2_bench_v3).
+template <class T>
+void lanes_rows(const Options& opt) {
+    const std::size_t n = std::min<std::size_t>(3500, opt.max_bodies);
+    const Scene<T> scene = make_box_scene<T>(n, opt.seed);
+    const char* precision = sizeof(T) == 4 ? "float" : "double";
+    for (const Strategy strategy : {Strategy::brute, Strategy::brute_lanes}) {
+        double best_s = 1e30;
+        std::size_t contacts = 0;
+        for (int rep = 0; rep < (strategy == Strategy::brute ? 2 : 5); ++rep) {
+            Detector<T> d(strategy);
+            const PassResult r = d.pass(scene);
+            best_s = std::min(best_s, r.seconds);
+            contacts = r.contacts;
+        }
+        std::printf("  %-6s %-12s %zu boxes: %10s  %5.1f ns/pair  %6.0fx the thesis  (%zu contacts, %d lanes)\n", precision,
+                    strategy_name(strategy), n, format_seconds(best_s).c_str(),
+                    1e9 * best_s / (0.5 * static_cast<double>(n) * static_cast<double>(n - 1)), thesis_seconds(n) / best_s,
+                    contacts, strategy == Strategy::brute ? 1 : EarlyOut<T>::width);
+    }
+}
+
+void lanes_only(const Options& opt) {
+    std::printf("xeno N² detection, the early-out in lanes; lanes built for %s\n", lane_target());
+    std::printf("machine: %s, one thread; load average at start: %s\n", cpu_model().c_str(), load_average().c_str());
+    lanes_rows<float>(opt);
+    lanes_rows<double>(opt);
+    const std::size_t n = std::min<std::size_t>(100000, opt.max_bodies);
+    const Scene<Real> scene = make_box_scene<Real>(n, opt.seed);
+    for (const bool early_out : {false, true}) {
+        const ColdWarm cw = cold_warm(Strategy::sap, scene, false, 5, {}, early_out);
+        std::printf("  double sap %-18s %zu boxes: cold %s, warm %s (broad phase %s), %zu contacts\n",
+                    early_out ? "with the early-out" : "without", n, format_seconds(best(cw.cold)).c_str(),
+                    format_seconds(best(cw.warm)).c_str(), format_seconds(best(cw.warm_broad)).c_str(), cw.last.contacts);
+    }
+    std::printf("load average at end: %s\n", load_average().c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     const Options opt = parse(argc, argv);
+    if (opt.lanes) {
+        lanes_only(opt);
+        return 0;
+    }
     if (!make_dir(opt.out)) {
         std::fprintf(stderr, "xeno_n2_bench: cannot create %s\n", opt.out.c_str());
         return 1;
@@ -213,7 +274,10 @@ int main(int argc, char** argv) {
     std::printf(
         "pass: world boxes + broad phase + collide() per pair (contact of every overlapping pair);\n"
         "      brute = mpr_penetration on every pair, concrete Box<double> (box scene) or one std::visit\n"
-        "      per pair (mixed), no bounding-volume test; rows: best of up to 5 cold passes\n\n");
+        "      per pair (mixed), no bounding-volume test; brute_lanes = the same with MPR's first test run\n"
+        "      for %d pairs at once in SIMD lanes (EarlyOut), MPR on the survivors; sap, tree and brute_bounds\n"
+        "      run that test on their pairs before collide(); rows: best of up to 5 cold passes\n\n",
+        EarlyOut<Real>::width);
 
     std::vector<Row> rows;
     std::vector<Detail> details;
@@ -231,7 +295,7 @@ int main(int argc, char** argv) {
             const Scene<Real> scene = mixed ? make_mixed_scene<Real>(n, opt.seed) : make_box_scene<Real>(n, opt.seed);
             for (const Strategy s : kStrategies) {
                 const std::string name = std::string(strategy_name(s)) + (mixed ? "_mixed" : "");
-                const bool quadratic = s == Strategy::brute || s == Strategy::brute_bounds;
+                const bool quadratic = s == Strategy::brute || s == Strategy::brute_lanes || s == Strategy::brute_bounds;
                 Row row{n, name, 0, 0, 0, false};
                 if (quadratic && last.count(s)) {
                     const double ratio = static_cast<double>(n) / static_cast<double>(last[s].first);
@@ -289,6 +353,13 @@ int main(int argc, char** argv) {
                 details.push_back({sc, n, strategy_name(s), "warm_broad", best(cw.warm_broad), cw.last.broad_pairs});
                 std::fflush(stdout);
             }
+            // The same sweep and prune pass without the early-out in lanes, for comparison.
+            const ColdWarm plain = cold_warm(Strategy::sap, scene, false, 5, {}, false);
+            std::printf("%9zu  %-6s %-6s %12s %12s %12s %12s %9zu  (sap without the early-out)\n", n, mixed ? "mixed" : "boxes",
+                        "sap-", format_seconds(best(plain.cold)).c_str(), format_seconds(best(plain.cold_broad)).c_str(),
+                        format_seconds(best(plain.warm)).c_str(), format_seconds(best(plain.warm_broad)).c_str(),
+                        plain.last.contacts);
+            details.push_back({mixed ? "mixed" : "boxes", n, "sap_no_early_out", "warm", best(plain.warm), plain.last.contacts});
         }
     }
     std::printf("\n");
@@ -321,19 +392,23 @@ int main(int argc, char** argv) {
     {
         const std::size_t nb = std::min<std::size_t>(table_ns.back(), opt.max_bodies);
         const Scene<float> scene = make_box_scene<float>(nb, opt.seed);
-        double best = 1e30;
-        std::size_t contacts = 0;
-        for (int rep = 0; rep < 3; ++rep) {
-            Detector<float> d(Strategy::brute);
-            const PassResult r = d.pass(scene);
-            best = std::min(best, r.seconds);
-            contacts = r.contacts;
+        for (const Strategy strategy : {Strategy::brute, Strategy::brute_lanes}) {
+            double best = 1e30;
+            std::size_t contacts = 0;
+            for (int rep = 0; rep < 3; ++rep) {
+                Detector<float> d(strategy);
+                const PassResult r = d.pass(scene);
+                best = std::min(best, r.seconds);
+                contacts = r.contacts;
+            }
+            const double thesis = thesis_seconds(nb);
+            std::printf("%s in float (%d lanes), %zu boxes: %s, %zu contacts", strategy_name(strategy),
+                        strategy == Strategy::brute ? 1 : EarlyOut<float>::width, nb, format_seconds(best).c_str(), contacts);
+            if (!std::isnan(thesis)) std::printf(", %.0fx the thesis", thesis / best);
+            std::printf("\n");
+            details.push_back({"boxes_float", nb, strategy_name(strategy), "cold", best, contacts});
         }
-        const double thesis = thesis_seconds(nb);
-        std::printf("brute in float, %zu boxes: %s, %zu contacts", nb, format_seconds(best).c_str(), contacts);
-        if (!std::isnan(thesis)) std::printf(", %.0fx the thesis", thesis / best);
-        std::printf("\n\n");
-        details.push_back({"boxes_float", nb, "brute", "cold", best, contacts});
+        std::printf("\n");
     }
 
     // 5. The parallel narrow phase: 1 thread against --threads through the default parallel-for.
@@ -413,8 +488,9 @@ int main(int argc, char** argv) {
             csv << d.scene << ',' << d.bodies << ',' << d.strategy << ',' << d.phase << ',' << d.seconds << ',' << d.pairs
                 << '\n';
     }
-    const std::vector<std::string> columns = {"brute",       "brute_bounds",       "sap",       "tree",
-                                              "brute_mixed", "brute_bounds_mixed", "sap_mixed", "tree_mixed"};
+    const std::vector<std::string> columns = {"brute",     "brute_lanes", "brute_bounds",      "sap",
+                                              "tree",      "brute_mixed", "brute_lanes_mixed", "brute_bounds_mixed",
+                                              "sap_mixed", "tree_mixed"};
     {
         std::ofstream dat(opt.out + "/n2_plot.dat");
         dat << "# bodies thesis";
@@ -450,11 +526,11 @@ int main(int argc, char** argv) {
               "set key left top\n"
               "set grid\n"
               "plot 'n2_plot.dat' using 1:2 with linespoints lw 2 pt 7 lc rgb 'black' title 'thesis (brute)'";
-        const char* colours[] = {"#d62728", "#ff7f0e", "#1f77b4", "#2ca02c"};
+        const char* colours[] = {"#d62728", "#9467bd", "#ff7f0e", "#1f77b4", "#2ca02c"};
         for (std::size_t k = 0; k < columns.size(); ++k) {
-            const bool mixed = k >= 4;
+            const bool mixed = k >= 5;
             gp << ", \\\n     '' using 1:" << (k + 3) << " with linespoints lw 2 pt " << (mixed ? 6 : 5) << " dt "
-               << (mixed ? 2 : 1) << " lc rgb '" << colours[k % 4] << "' title 'xeno " << columns[k] << "'";
+               << (mixed ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' title 'xeno " << columns[k] << "'";
         }
         gp << "\n";
     }

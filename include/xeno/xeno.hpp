@@ -37,6 +37,7 @@
 #include "collide/box_box.hpp"
 #include "collide/box_triangle.hpp"
 #include "collide/collide.hpp"
+#include "collide/early_out.hpp"
 #include "collide/face_clip.hpp"
 #include "collide/mesh_collide.hpp"
 #include "collide/minkowski.hpp"

@@ -18,6 +18,7 @@
 #include <xeno/broadphase/sweep_and_prune.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -251,6 +252,38 @@ TEST_CASE_TEMPLATE("the N² benchmark scene has about 0.65 overlapping pairs per
     // Every contact's pair passed the broad phase.
     for (const bench::PairContact<T>& c : brute.contacts())
         CHECK(std::binary_search(sap.pairs().begin(), sap.pairs().end(), c.pair));
+}
+
+// Two passes found the same contacts, pair for pair and bit for bit.
+template <class T>
+void check_same_contacts(const bench::Detector<T>& x, const bench::Detector<T>& y) {
+    REQUIRE(x.contacts().size() == y.contacts().size());
+    for (std::size_t k = 0; k < x.contacts().size(); ++k) {
+        const Penetration<T>& p = x.contacts()[k].contact;
+        const Penetration<T>& q = y.contacts()[k].contact;
+        CHECK(x.contacts()[k].pair == y.contacts()[k].pair);
+        CHECK(std::memcmp(&p.normal, &q.normal, sizeof p.normal) == 0);
+        CHECK(std::memcmp(&p.point_a, &q.point_a, sizeof p.point_a) == 0);
+        CHECK(std::memcmp(&p.point_b, &q.point_b, sizeof p.point_b) == 0);
+        CHECK(std::memcmp(&p.depth, &q.depth, sizeof p.depth) == 0);
+    }
+}
+
+TEST_CASE_TEMPLATE("MPR's first test in lanes skips only pairs MPR misses: the same contacts, bit for bit", T, float, double) {
+    // brute_lanes against the thesis's brute force, and the pair strategies with and without
+    // the early-out, on the box and the mixed scene (early_out.hpp; thesis 4.1 c).
+    for (const bool mixed : {false, true}) {
+        const bench::Scene<T> scene = mixed ? bench::make_mixed_scene<T>(700) : bench::make_box_scene<T>(700);
+        bench::Detector<T> brute(bench::Strategy::brute), lanes(bench::Strategy::brute_lanes);
+        brute.pass(scene);
+        lanes.pass(scene);
+        CHECK(brute.contacts().size() > 200);
+        check_same_contacts(brute, lanes);
+        bench::Detector<T> sap(bench::Strategy::sap), plain(bench::Strategy::sap, {}, T(0.1), false);
+        sap.pass(scene);
+        plain.pass(scene);
+        check_same_contacts(sap, plain);
+    }
 }
 
 TEST_CASE_TEMPLATE("the world steps a pile to the same bits with every broad phase", T, float, double) {

@@ -12,10 +12,14 @@
 #include "support/shuffled_tasks.hpp"
 #include "scenes/all.hpp"
 
+#include <xeno/collide/early_out.hpp>
+#include <xeno/shape/polyhedra.hpp>
+
 #include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -61,6 +65,43 @@ std::uint64_t final_hash(const char* scene, int steps) {
     return xeno::test::state_hash(world);
 }
 
+// The early-out's answer for every pair of a crowd of every shape kind (collide/early_out.hpp),
+// in runs of the build's lane width and gathered, as one hash: the portable, SSE2 and AVX2 builds
+// must print the same.
+template <class T>
+std::uint64_t early_out_hash() {
+    using namespace xeno;
+    constexpr std::uint32_t W = EarlyOut<T>::width;
+    const std::vector<Shape<T>> shapes = {Box<T>(T(0.5), T(0.2), T(0.3)), Sphere<T>(T(0.4)),
+                                          Capsule<T>(T(0.2), T(0.5)),     Cylinder<T>(T(0.3), T(0.2)),
+                                          Cone<T>(T(0.4), T(0.8)),        make_regular_prism(7, T(0.4), T(0.3))};
+    scenes::Random rng(2010);
+    const std::uint32_t n = 301;
+    EarlyOut<T> early;
+    early.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i)
+        early.set(i, shapes[i % shapes.size()], {rng.in_box(Vec3<T>::one() * T(4)), rng.rotation<T>()});
+    std::uint64_t h = 1469598103934665603ull;
+    const auto mix = [&](unsigned bit) { h = (h ^ bit) * 1099511628211ull; };
+    for (std::uint32_t i = 0; i < n; ++i) {
+        std::uint32_t j = i + 1;
+        for (; j + W <= n; j += W) {
+            const unsigned m = early.template apart_run<W>(i, j, T(0.05));
+            for (std::uint32_t l = 0; l < W; ++l) mix((m >> l) & 1u);
+        }
+        for (; j < n; ++j) mix(early.apart(i, j, T(0.05)) ? 1u : 0u);
+        for (std::uint32_t c = 0; c < 8; c += W) {  // eight gathered pairs per body, whatever W
+            std::uint32_t a[W], b[W];
+            T margin[W];
+            for (std::uint32_t l = 0; l < W; ++l)
+                a[l] = i, b[l] = (i * 7u + (c + l) * 13u + 1u) % n, margin[l] = T(0.01) * T(c + l);
+            const unsigned m = early.template apart_pairs<W>(a, b, margin);
+            for (std::uint32_t l = 0; l < W; ++l) mix(((m >> l) & 1u) * 2u + (early.apart(a[l], b[l], margin[l]) ? 1u : 0u));
+        }
+    }
+    return h;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -74,6 +115,8 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
+    std::printf("early-out float %016" PRIx64 "\n", early_out_hash<float>());
+    std::printf("early-out double %016" PRIx64 "\n", early_out_hash<double>());
     for (const Run& run : runs) {
         std::printf("%s float %016" PRIx64 "\n", run.scene, final_hash<float>(run.scene, run.steps));
         std::printf("%s double %016" PRIx64 "\n", run.scene, final_hash<double>(run.scene, run.steps));

@@ -29,6 +29,7 @@
 #include "../broadphase/aabb_tree.hpp"
 #include "../broadphase/sweep_and_prune.hpp"
 #include "../collide/collide.hpp"
+#include "../collide/early_out.hpp"
 #include "../collide/mesh_collide.hpp"
 #include "../collide/raycast.hpp"
 #include "../collide/shape_cast.hpp"
@@ -462,7 +463,9 @@ private:
     T pair_margin(const Body<T>& a, const Body<T>& b, T dt) const {
         return settings_.speculative_distance + (travel_speed(a) + travel_speed(b)) * dt;
     }
-    enum class PairKind : std::uint8_t { dropped, kept, collided, parts, mesh };
+    /// dropped: not wanted; apart: rejected by the early-out (its contacts end); kept: both asleep.
+    enum class PairKind : std::uint8_t { dropped, apart, kept, collided, parts, mesh };
+    void reject_apart_pairs(T dt);
     /// What the narrow phase does with a broad-phase pair, and its contacts of last step.
     struct PairWork {
         std::uint32_t old_begin, old_end;  ///< in contacts_
@@ -564,6 +567,8 @@ private:
     // Scratch kept between steps so a settled step allocates nothing.
     std::vector<Contact<T>> next_contacts_;          ///< narrow phase output, swapped with contacts_
     std::vector<PairWork> pair_work_;                ///< per broad-phase pair (narrow phase)
+    EarlyOut<T> early_out_;                          ///< each convex body's rounded box in the world (update_bounds)
+    std::vector<std::uint32_t> early_jobs_;          ///< pairs of kind collided, for the early-out
     MeshManifolds mesh_manifolds_;                   ///< one worker: a mesh pair's manifolds (narrow phase)
     std::vector<std::uint32_t> mesh_jobs_;           ///< several workers: the pairs of kind mesh, in pair order
     std::vector<MeshManifolds> mesh_job_manifolds_;  ///< several workers: the manifolds of each of mesh_jobs_
@@ -948,15 +953,27 @@ void World<T>::report_events() {
 template <class T>
 void World<T>::update_bounds(T dt) {
     // Fattened by the speculative distance and by the distance the body can travel this step,
-    // so contacts exist before the bodies meet.
+    // so contacts exist before the bodies meet. The early-out's bound of each convex body is
+    // placed here too: once per body, not per pair.
+    // (After bodies were added or a snapshot restored, every body's bound is placed again.)
+    const bool all = early_out_.size() != bodies_.size();
+    if (all) early_out_.resize(bodies_.size());
+    const auto place_bound = [&](std::uint32_t i, const Body<T>& b) {
+        if (b.mesh_ || b.compound_) early_out_.clear(i);
+        else early_out_.set(i, *b.shape_, b.transform());
+    };
     parallel_for(tasks_.get(), static_cast<std::uint32_t>(bodies_.size()), bounds_range,
                  [&](std::uint32_t begin, std::uint32_t end) {
                      for (std::uint32_t i = begin; i < end; ++i) {
                          Body<T>& b = bodies_[i];
                          if (!b.alive_ || !b.enabled_) continue;  // a disabled body's box stays empty
-                         if (b.type_ == BodyType::static_body && !b.moved_) continue;
+                         if (b.type_ == BodyType::static_body && !b.moved_) {
+                             if (all) place_bound(i, b);
+                             continue;
+                         }
                          const T reach = settings_.speculative_distance + travel_speed(b) * dt;
                          bounds_[i] = b.world_bounds().expanded(reach);
+                         place_bound(i, b);
                          b.moved_ = false;
                      }
                  });
@@ -1001,6 +1018,7 @@ void World<T>::narrow_phase(T dt) {
     const bool parallel = workers() > 1;
     pair_work_.resize(pairs_.size());
     collide_jobs_.clear();
+    early_jobs_.clear();
     mesh_jobs_.clear();
     std::size_t old = 0;
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
@@ -1027,9 +1045,13 @@ void World<T>::narrow_phase(T dt) {
                     : a.mesh_ || b.mesh_         ? PairKind::mesh
                     : a.compound_ || b.compound_ ? PairKind::parts
                                                  : PairKind::collided;
-        if (parallel && work.kind == PairKind::collided) collide_jobs_.push_back(static_cast<std::uint32_t>(k));
+        if (work.kind == PairKind::collided) early_jobs_.push_back(static_cast<std::uint32_t>(k));
         if (parallel && work.kind == PairKind::mesh) mesh_jobs_.push_back(static_cast<std::uint32_t>(k));
     }
+    reject_apart_pairs(dt);
+    if (parallel)
+        for (const std::uint32_t k : early_jobs_)
+            if (pair_work_[k].kind == PairKind::collided) collide_jobs_.push_back(k);
     job_contacts_.resize(collide_jobs_.size());
     parallel_for(tasks_.get(), static_cast<std::uint32_t>(collide_jobs_.size()), 16u,
                  [&](std::uint32_t begin, std::uint32_t end) {
@@ -1089,6 +1111,32 @@ void World<T>::narrow_phase(T dt) {
     contacts_.swap(next);
     index_contacts(bodies_.size());
     stats_.contacts = contacts_.size();
+}
+
+// MPR's first test for W pairs at a time (early_out.hpp): a convex pair apart by more than its
+// margin becomes PairKind::apart, so its contacts end as they would after a narrow phase that
+// found nothing, without the narrow phase. It only rejects pairs the narrow phase would reject.
+template <class T>
+void World<T>::reject_apart_pairs(T dt) {
+    constexpr int W = EarlyOut<T>::width;
+    const auto mark = [&](std::uint32_t k, bool apart) {
+        if (apart) pair_work_[k].kind = PairKind::apart;
+    };
+    std::size_t j = 0;
+    for (; j + W <= early_jobs_.size(); j += W) {
+        std::uint32_t a[W], b[W];
+        T margin[W];
+        for (int l = 0; l < W; ++l) {
+            const ProxyPair& pair = pairs_[early_jobs_[j + static_cast<std::size_t>(l)]];
+            a[l] = pair.a, b[l] = pair.b, margin[l] = pair_margin(bodies_[pair.a], bodies_[pair.b], dt);
+        }
+        const unsigned apart = early_out_.template apart_pairs<W>(a, b, margin);
+        for (int l = 0; l < W; ++l) mark(early_jobs_[j + static_cast<std::size_t>(l)], (apart >> l) & 1u);
+    }
+    for (; j < early_jobs_.size(); ++j) {
+        const ProxyPair& pair = pairs_[early_jobs_[j]];
+        mark(early_jobs_[j], early_out_.apart(pair.a, pair.b, pair_margin(bodies_[pair.a], bodies_[pair.b], dt)));
+    }
 }
 
 // A counting sort of the contacts by body slot (each contact listed under both bodies), in

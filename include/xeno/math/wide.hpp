@@ -58,6 +58,8 @@ struct Wide {
         for (int i = 0; i < W; ++i) r.lane[i] = p[i];
         return r;
     }
+    /// W numbers from p, any alignment.
+    static Wide loadu(const T* p) { return load(p); }
     void store(T* p) const {
         for (int i = 0; i < W; ++i) p[i] = lane[i];
     }
@@ -91,6 +93,12 @@ struct Wide {
         for (int i = 0; i < W; ++i) r.lane[i] = std::sqrt(a.lane[i]);
         return r;
     }
+    /// |a|: the sign bit cleared (exact, as in the SIMD lanes).
+    friend Wide abs(const Wide& a) {
+        Wide r;
+        for (int i = 0; i < W; ++i) r.lane[i] = std::fabs(a.lane[i]);
+        return r;
+    }
 
     /// A lane mask: true lanes of a comparison.
     struct Mask {
@@ -108,6 +116,12 @@ struct Wide {
         for (int i = 0; i < W; ++i) r.lane[i] = m.lane[i] ? a.lane[i] : b.lane[i];
         return r;
     }
+    /// Bit i set when lane i is true.
+    friend unsigned bits(const Mask& m) {
+        unsigned r = 0;
+        for (int i = 0; i < W; ++i) r |= m.lane[i] ? 1u << i : 0u;
+        return r;
+    }
 };
 
 #if defined(XENO_SIMD_SSE2)
@@ -122,6 +136,7 @@ struct Wide<float, 4> {
     float get(int i) const { return reinterpret_cast<const float*>(&x)[i]; }
     void set(int i, float v) { reinterpret_cast<float*>(&x)[i] = v; }
     static Wide load(const float* p) { return {_mm_load_ps(p)}; }
+    static Wide loadu(const float* p) { return {_mm_loadu_ps(p)}; }
     void store(float* p) const { _mm_store_ps(p, x); }
     friend Wide operator+(Wide a, Wide b) { return {_mm_add_ps(a.x, b.x)}; }
     friend Wide operator-(Wide a, Wide b) { return {_mm_sub_ps(a.x, b.x)}; }
@@ -130,9 +145,11 @@ struct Wide<float, 4> {
     friend Wide max(Wide a, Wide b) { return {_mm_max_ps(a.x, b.x)}; }
     friend Wide min(Wide a, Wide b) { return {_mm_min_ps(a.x, b.x)}; }
     friend Wide sqrt(Wide a) { return {_mm_sqrt_ps(a.x)}; }
+    friend Wide abs(Wide a) { return {_mm_andnot_ps(_mm_set1_ps(-0.0f), a.x)}; }
     struct Mask {
         __m128 x;
     };
+    friend unsigned bits(Mask m) { return static_cast<unsigned>(_mm_movemask_ps(m.x)); }
     friend Mask operator>(Wide a, Wide b) { return {_mm_cmpgt_ps(a.x, b.x)}; }
     friend Mask operator<(Wide a, Wide b) { return {_mm_cmplt_ps(a.x, b.x)}; }
     friend Wide select(Mask m, Wide a, Wide b) { return {_mm_or_ps(_mm_and_ps(m.x, a.x), _mm_andnot_ps(m.x, b.x))}; }
@@ -149,6 +166,7 @@ struct Wide<double, 2> {
     double get(int i) const { return reinterpret_cast<const double*>(&x)[i]; }
     void set(int i, double v) { reinterpret_cast<double*>(&x)[i] = v; }
     static Wide load(const double* p) { return {_mm_load_pd(p)}; }
+    static Wide loadu(const double* p) { return {_mm_loadu_pd(p)}; }
     void store(double* p) const { _mm_store_pd(p, x); }
     friend Wide operator+(Wide a, Wide b) { return {_mm_add_pd(a.x, b.x)}; }
     friend Wide operator-(Wide a, Wide b) { return {_mm_sub_pd(a.x, b.x)}; }
@@ -157,9 +175,11 @@ struct Wide<double, 2> {
     friend Wide max(Wide a, Wide b) { return {_mm_max_pd(a.x, b.x)}; }
     friend Wide min(Wide a, Wide b) { return {_mm_min_pd(a.x, b.x)}; }
     friend Wide sqrt(Wide a) { return {_mm_sqrt_pd(a.x)}; }
+    friend Wide abs(Wide a) { return {_mm_andnot_pd(_mm_set1_pd(-0.0), a.x)}; }
     struct Mask {
         __m128d x;
     };
+    friend unsigned bits(Mask m) { return static_cast<unsigned>(_mm_movemask_pd(m.x)); }
     friend Mask operator>(Wide a, Wide b) { return {_mm_cmpgt_pd(a.x, b.x)}; }
     friend Mask operator<(Wide a, Wide b) { return {_mm_cmplt_pd(a.x, b.x)}; }
     friend Wide select(Mask m, Wide a, Wide b) { return {_mm_or_pd(_mm_and_pd(m.x, a.x), _mm_andnot_pd(m.x, b.x))}; }
@@ -178,6 +198,7 @@ struct Wide<float, 8> {
     float get(int i) const { return reinterpret_cast<const float*>(&x)[i]; }
     void set(int i, float v) { reinterpret_cast<float*>(&x)[i] = v; }
     static Wide load(const float* p) { return {_mm256_load_ps(p)}; }
+    static Wide loadu(const float* p) { return {_mm256_loadu_ps(p)}; }
     void store(float* p) const { _mm256_store_ps(p, x); }
     friend Wide operator+(Wide a, Wide b) { return {_mm256_add_ps(a.x, b.x)}; }
     friend Wide operator-(Wide a, Wide b) { return {_mm256_sub_ps(a.x, b.x)}; }
@@ -186,9 +207,11 @@ struct Wide<float, 8> {
     friend Wide max(Wide a, Wide b) { return {_mm256_max_ps(a.x, b.x)}; }
     friend Wide min(Wide a, Wide b) { return {_mm256_min_ps(a.x, b.x)}; }
     friend Wide sqrt(Wide a) { return {_mm256_sqrt_ps(a.x)}; }
+    friend Wide abs(Wide a) { return {_mm256_andnot_ps(_mm256_set1_ps(-0.0f), a.x)}; }
     struct Mask {
         __m256 x;
     };
+    friend unsigned bits(Mask m) { return static_cast<unsigned>(_mm256_movemask_ps(m.x)); }
     friend Mask operator>(Wide a, Wide b) { return {_mm256_cmp_ps(a.x, b.x, _CMP_GT_OQ)}; }
     friend Mask operator<(Wide a, Wide b) { return {_mm256_cmp_ps(a.x, b.x, _CMP_LT_OQ)}; }
     friend Wide select(Mask m, Wide a, Wide b) { return {_mm256_blendv_ps(b.x, a.x, m.x)}; }
@@ -205,6 +228,7 @@ struct Wide<double, 4> {
     double get(int i) const { return reinterpret_cast<const double*>(&x)[i]; }
     void set(int i, double v) { reinterpret_cast<double*>(&x)[i] = v; }
     static Wide load(const double* p) { return {_mm256_load_pd(p)}; }
+    static Wide loadu(const double* p) { return {_mm256_loadu_pd(p)}; }
     void store(double* p) const { _mm256_store_pd(p, x); }
     friend Wide operator+(Wide a, Wide b) { return {_mm256_add_pd(a.x, b.x)}; }
     friend Wide operator-(Wide a, Wide b) { return {_mm256_sub_pd(a.x, b.x)}; }
@@ -213,9 +237,11 @@ struct Wide<double, 4> {
     friend Wide max(Wide a, Wide b) { return {_mm256_max_pd(a.x, b.x)}; }
     friend Wide min(Wide a, Wide b) { return {_mm256_min_pd(a.x, b.x)}; }
     friend Wide sqrt(Wide a) { return {_mm256_sqrt_pd(a.x)}; }
+    friend Wide abs(Wide a) { return {_mm256_andnot_pd(_mm256_set1_pd(-0.0), a.x)}; }
     struct Mask {
         __m256d x;
     };
+    friend unsigned bits(Mask m) { return static_cast<unsigned>(_mm256_movemask_pd(m.x)); }
     friend Mask operator>(Wide a, Wide b) { return {_mm256_cmp_pd(a.x, b.x, _CMP_GT_OQ)}; }
     friend Mask operator<(Wide a, Wide b) { return {_mm256_cmp_pd(a.x, b.x, _CMP_LT_OQ)}; }
     friend Wide select(Mask m, Wide a, Wide b) { return {_mm256_blendv_pd(b.x, a.x, m.x)}; }
