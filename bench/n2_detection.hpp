@@ -253,7 +253,8 @@ private:
     std::vector<Penetration<T>> results_;
     std::vector<PairContact<T>> contacts_;
     bool early_out_;
-    EarlyOut<T> bounds_;  ///< each body's rounded box in world coordinates (brute_lanes, early_out)
+    EarlyOut<T> bounds_;               ///< each body's rounded box in world coordinates (brute_lanes, early_out)
+    std::vector<std::uint8_t> apart_;  ///< per pair: rejected by the early-out
 };
 
 /// Seconds elapsed since start on the steady clock.
@@ -307,27 +308,34 @@ void Detector<T>::set_bounds(const Scene<T>& s) {
     for (std::size_t i = 0; i < s.size(); ++i) bounds_.set(i, s.shape(i), s.poses[i]);
 }
 
-// With the early-out, pairs go W at a time through EarlyOut::apart_pairs and only the survivors
-// through collide(); the last few of a range one at a time (the same answer, bit for bit).
+// With the early-out, pairs go W at a time through EarlyOut::apart_pairs (the records of pairs a
+// few ahead prefetched: the second bodies come at random) and the last few of a range one at a
+// time (the same answer, bit for bit); then only the survivors through collide().
 template <class T>
 void Detector<T>::narrow(const Scene<T>& s) {
     constexpr int W = EarlyOut<T>::width;
+    constexpr std::size_t kAhead = 16;
     if (early_out_) set_bounds(s);
     results_.resize(pairs_.size());
+    apart_.assign(pairs_.size(), 0);
     run(pairs_.size(), [&](std::size_t begin, std::size_t end) {
-        const auto one = [&](std::size_t k, bool apart) {
-            const ProxyPair p = pairs_[k];
-            results_[k] = apart ? Penetration<T>{} : collide(s.shape(p.a), s.poses[p.a], s.shape(p.b), s.poses[p.b]);
-        };
         std::size_t k = begin;
         for (; early_out_ && k + W <= end; k += W) {
             std::uint32_t a[W], b[W];
             T margin[W];
-            for (int l = 0; l < W; ++l) a[l] = pairs_[k + l].a, b[l] = pairs_[k + l].b, margin[l] = T(0);
+            for (int l = 0; l < W; ++l) {
+                const std::size_t m = k + static_cast<std::size_t>(l);
+                if (m + kAhead < end) bounds_.prefetch(pairs_[m + kAhead].a), bounds_.prefetch(pairs_[m + kAhead].b);
+                a[l] = pairs_[m].a, b[l] = pairs_[m].b, margin[l] = T(0);
+            }
             const unsigned apart = bounds_.template apart_pairs<W>(a, b, margin);
-            for (int l = 0; l < W; ++l) one(k + l, (apart >> l) & 1u);
+            for (int l = 0; l < W; ++l) apart_[k + static_cast<std::size_t>(l)] = static_cast<std::uint8_t>((apart >> l) & 1u);
         }
-        for (; k < end; ++k) one(k, early_out_ && bounds_.apart(pairs_[k].a, pairs_[k].b, T(0)));
+        for (; early_out_ && k < end; ++k) apart_[k] = bounds_.apart(pairs_[k].a, pairs_[k].b, T(0)) ? 1 : 0;
+        for (k = begin; k < end; ++k) {
+            const ProxyPair p = pairs_[k];
+            results_[k] = apart_[k] ? Penetration<T>{} : collide(s.shape(p.a), s.poses[p.a], s.shape(p.b), s.poses[p.b]);
+        }
     });
     contacts_.clear();
     for (std::size_t k = 0; k < pairs_.size(); ++k)

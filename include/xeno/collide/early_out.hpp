@@ -69,8 +69,11 @@ RoundedBox<T> rounded_box(const Shape<T>& shape) {
         shape);
 }
 
-/// Every body's rounded box in world coordinates, one array per number, so W consecutive bodies
-/// load straight into lanes (brute force) and any W pairs gather into them (a pair list).
+/// Every body's rounded box in world coordinates, one record of 16 numbers per body (centre,
+/// three half-axes, round, padding: a cache line in float), transposed into lanes W records at a
+/// time: W consecutive bodies (brute force) or the bodies of any W pairs (a pair list). Records
+/// rather than one array per number, because a pair list reaches its second bodies at random: a
+/// record is one or two cache lines, thirteen arrays would be thirteen misses.
 template <class T>
 class EarlyOut {
 public:
@@ -80,10 +83,7 @@ public:
     /// n bodies: the first ones keep their bounds, new ones have none (their pairs are never
     /// rejected until set).
     void resize(std::size_t n) {
-        for (std::vector<T>& row : rows_) {
-            row.resize(n + kPad, std::numeric_limits<T>::quiet_NaN());
-            std::fill(row.begin() + static_cast<std::ptrdiff_t>(std::min(n_, n)), row.end(), std::numeric_limits<T>::quiet_NaN());
-        }
+        records_.resize(n * kRecord, std::numeric_limits<T>::quiet_NaN());
         n_ = n;
     }
     std::size_t size() const { return n_; }
@@ -94,60 +94,73 @@ public:
         const Mat3<T> r = to_matrix(pose.orientation);
         const Vec3<T> c = pose.apply(box.centre);
         const Vec3<T> u0 = r.column(0) * box.half.x, u1 = r.column(1) * box.half.y, u2 = r.column(2) * box.half.z;
-        const T values[kRows] = {c.x, c.y, c.z, u0.x, u0.y, u0.z, u1.x, u1.y, u1.z, u2.x, u2.y, u2.z, box.round};
-        for (int k = 0; k < kRows; ++k) rows_[k][i] = values[k];
+        const T values[kRecord] = {c.x,  c.y,  c.z,  u0.x, u0.y,      u0.z, u1.x, u1.y,
+                                   u1.z, u2.x, u2.y, u2.z, box.round, T(0), T(0), T(0)};
+        std::copy(values, values + kRecord, record(i));
     }
     /// Body i has no bound: every pair with it goes on to the narrow phase.
-    void clear(std::size_t i) {
-        for (std::vector<T>& row : rows_) row[i] = std::numeric_limits<T>::quiet_NaN();
-    }
+    void clear(std::size_t i) { std::fill(record(i), record(i) + kRecord, std::numeric_limits<T>::quiet_NaN()); }
 
     /// Bit l set when bodies a and b + l are apart by more than margin (l < W; b + W − 1 < size()).
     template <int W>
     unsigned apart_run(std::size_t a, std::size_t b, T margin) const {
         using V = detail::Wide<T, W>;
-        V va[kRows], vb[kRows];
-        for (int k = 0; k < kRows; ++k) va[k] = V::splat(rows_[k][a]), vb[k] = V::loadu(&rows_[k][b]);
+        const T* rb[W];
+        for (int l = 0; l < W; ++l) rb[l] = record(b + static_cast<std::size_t>(l));
+        V va[kRecord], vb[kRecord];
+        for (int k = 0; k < kRecord; ++k) va[k] = V::splat(record(a)[k]);
+        detail::load_transposed(rb, kRecord, vb);
         return bits(apart_lanes(va, vb, V::splat(margin)));
     }
     /// Bit l set when bodies a[l] and b[l] are apart by more than margin[l].
     template <int W>
     unsigned apart_pairs(const std::uint32_t (&a)[W], const std::uint32_t (&b)[W], const T (&margin)[W]) const {
         using V = detail::Wide<T, W>;
-        V va[kRows], vb[kRows], vm = V::splat(T(0));
-        for (int l = 0; l < W; ++l) {
-            for (int k = 0; k < kRows; ++k) va[k].set(l, rows_[k][a[l]]), vb[k].set(l, rows_[k][b[l]]);
-            vm.set(l, margin[l]);
-        }
-        return bits(apart_lanes(va, vb, vm));
+        const T* ra[W];
+        const T* rb[W];
+        for (int l = 0; l < W; ++l) ra[l] = record(a[l]), rb[l] = record(b[l]);
+        V va[kRecord], vb[kRecord];
+        detail::load_transposed(ra, kRecord, va);
+        detail::load_transposed(rb, kRecord, vb);
+        return bits(apart_lanes(va, vb, V::loadu(margin)));
+    }
+    /// Asks the cache for body i's record ahead of a test (a pair list reaches its bodies at
+    /// random: prefetching a few pairs ahead keeps several misses in flight).
+    void prefetch(std::size_t i) const {
+#if defined(__GNUC__) || defined(__clang__)
+        const char* p = reinterpret_cast<const char*>(record(i));
+        __builtin_prefetch(p);
+        if (sizeof(T) * kRecord > 64) __builtin_prefetch(p + 64);
+#else
+        (void)i;
+#endif
     }
     /// One pair, through the same operations (a lane of width 1).
     bool apart(std::size_t a, std::size_t b, T margin) const { return apart_run<1>(a, b, margin) != 0; }
 
-    /// The largest W apart_run and apart_pairs are instantiated for here (kPad covers it).
-    static constexpr int kMaxWidth = 8;
-
 private:
-    static constexpr int kRows = 13;                // centre (3), three half-axes (9), round
-    static constexpr std::size_t kPad = kMaxWidth;  // a run may read up to W − 1 past the end
+    static constexpr int kRows = 13;    // centre (3), three half-axes (9), round
+    static constexpr int kRecord = 16;  // padded: whole 4 × 4 transposes
+    T* record(std::size_t i) { return records_.data() + i * kRecord; }
+    const T* record(std::size_t i) const { return records_.data() + i * kRecord; }
 
     // The test of the file comment, lane by lane.
     template <class V>
-    XENO_WIDE_INLINE static typename V::Mask apart_lanes(const V (&a)[kRows], const V (&b)[kRows], V margin) {
+    XENO_WIDE_INLINE static typename V::Mask apart_lanes(const V (&a)[kRecord], const V (&b)[kRecord], V margin) {
         const detail::WideVec3<V> d{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
         const V dd = dot(d, d);
         const V reach = extent(a, d) + extent(b, d) + (a[12] + b[12] + margin) * sqrt(dd);
         return dd * V::splat(T(1) - kSlack) > reach * V::splat(T(1) + kSlack);
     }
     template <class V>
-    XENO_WIDE_INLINE static V extent(const V (&r)[kRows], const detail::WideVec3<V>& d) {
+    XENO_WIDE_INLINE static V extent(const V (&r)[kRecord], const detail::WideVec3<V>& d) {
         return abs(r[3] * d.x + r[4] * d.y + r[5] * d.z) + abs(r[6] * d.x + r[7] * d.y + r[8] * d.z) +
                abs(r[9] * d.x + r[10] * d.y + r[11] * d.z);
     }
     static constexpr T kSlack = T(1) / T(128);
 
     std::size_t n_ = 0;
-    std::vector<T> rows_[kRows];
+    std::vector<T> records_;
 };
 
 namespace f32 {

@@ -1119,6 +1119,7 @@ void World<T>::narrow_phase(T dt) {
 template <class T>
 void World<T>::reject_apart_pairs(T dt) {
     constexpr int W = EarlyOut<T>::width;
+    constexpr std::size_t kAhead = 16;  // second bodies come at random: keep a few misses in flight
     const auto mark = [&](std::uint32_t k, bool apart) {
         if (apart) pair_work_[k].kind = PairKind::apart;
     };
@@ -1127,7 +1128,9 @@ void World<T>::reject_apart_pairs(T dt) {
         std::uint32_t a[W], b[W];
         T margin[W];
         for (int l = 0; l < W; ++l) {
-            const ProxyPair& pair = pairs_[early_jobs_[j + static_cast<std::size_t>(l)]];
+            const std::size_t m = j + static_cast<std::size_t>(l);
+            if (m + kAhead < early_jobs_.size()) early_out_.prefetch(pairs_[early_jobs_[m + kAhead]].b);
+            const ProxyPair& pair = pairs_[early_jobs_[m]];
             a[l] = pair.a, b[l] = pair.b, margin[l] = pair_margin(bodies_[pair.a], bodies_[pair.b], dt);
         }
         const unsigned apart = early_out_.template apart_pairs<W>(a, b, margin);

@@ -303,6 +303,38 @@ XENO_WIDE_INLINE void store_transposed(const Wide<double, 2>* in, int rows, doub
 }
 #endif
 
+#if defined(XENO_SIMD_AVX)
+// AVX: eight float records as two 4 × 4 transposes joined into one register; four double records
+// as 2 × 2 unpacks of their two halves.
+XENO_WIDE_INLINE void load_transposed(const float* const (&src)[8], int rows, Wide<float, 8>* out) {
+    int r = 0;
+    for (; r + 4 <= rows; r += 4) {
+        __m128 a = _mm_loadu_ps(src[0] + r), b = _mm_loadu_ps(src[1] + r), c = _mm_loadu_ps(src[2] + r),
+               d = _mm_loadu_ps(src[3] + r);
+        __m128 e = _mm_loadu_ps(src[4] + r), f = _mm_loadu_ps(src[5] + r), g = _mm_loadu_ps(src[6] + r),
+               h = _mm_loadu_ps(src[7] + r);
+        _MM_TRANSPOSE4_PS(a, b, c, d);
+        _MM_TRANSPOSE4_PS(e, f, g, h);
+        out[r].x = _mm256_insertf128_ps(_mm256_castps128_ps256(a), e, 1);
+        out[r + 1].x = _mm256_insertf128_ps(_mm256_castps128_ps256(b), f, 1);
+        out[r + 2].x = _mm256_insertf128_ps(_mm256_castps128_ps256(c), g, 1);
+        out[r + 3].x = _mm256_insertf128_ps(_mm256_castps128_ps256(d), h, 1);
+    }
+    for (; r < rows; ++r)
+        out[r].x = _mm256_set_ps(src[7][r], src[6][r], src[5][r], src[4][r], src[3][r], src[2][r], src[1][r], src[0][r]);
+}
+XENO_WIDE_INLINE void load_transposed(const double* const (&src)[4], int rows, Wide<double, 4>* out) {
+    int r = 0;
+    for (; r + 2 <= rows; r += 2) {
+        const __m128d a = _mm_loadu_pd(src[0] + r), b = _mm_loadu_pd(src[1] + r), c = _mm_loadu_pd(src[2] + r),
+                      d = _mm_loadu_pd(src[3] + r);
+        out[r].x = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_unpacklo_pd(a, b)), _mm_unpacklo_pd(c, d), 1);
+        out[r + 1].x = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_unpackhi_pd(a, b)), _mm_unpackhi_pd(c, d), 1);
+    }
+    for (; r < rows; ++r) out[r].x = _mm256_set_pd(src[3][r], src[2][r], src[1][r], src[0][r]);
+}
+#endif
+
 /// The solver's lane count for T on this target (see the file comment).
 template <class T>
 constexpr int native_width() {
