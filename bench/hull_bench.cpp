@@ -9,12 +9,18 @@
 // Each time is the best of several runs, in CPU seconds of this process (a busy machine adds
 // less to those than to wall time).
 //
+// Then the support search on hulls of 8 … 256 points on a sphere (issue 19: which wins by vertex
+// count): the scan in SIMD lanes (support_index_scan) against hill climbing from the previous
+// answer (directions turning slowly, as inside one MPR query) and from the axis-extreme start
+// vertex (a fresh query: what support() climbs from above hill_climb_threshold vertices).
+//
 //   xeno_hull_bench [--quick] [--max N]    (--quick: up to 16k points, one run each)
 #include "scenes/random.hpp"
 
 #include <xeno/shape/convex_hull.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -75,6 +81,32 @@ void run(const char* precision, bool on_sphere, std::size_t max_points, int runs
     }
 }
 
+/// Nanoseconds per support search on a hull of n points on a sphere: scan, climb from the last
+/// answer, climb from the start vertex; best of 7 sweeps over 4,096 slowly turning directions.
+template <class T>
+void support_row(const char* precision, std::size_t n) {
+    const xeno::ConvexPolyhedron<T> hull = xeno::make_convex_hull(cloud<T>(n, true)).polyhedron;
+    xeno::scenes::Random rng(n);
+    std::vector<Vec3<T>> directions;
+    Vec3<T> d = rng.direction<T>();
+    for (int i = 0; i < 4096; ++i) directions.push_back(d = xeno::normalized(d + rng.direction<T>() * T(0.3)));
+    std::uint32_t sink = 0;
+    const auto time = [&](auto search) {
+        double best = 1e300;
+        for (int r = 0; r < 7; ++r) {
+            const auto start = std::chrono::steady_clock::now();
+            for (const Vec3<T>& x : directions) sink += search(x);
+            best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        }
+        return 1e9 * best / static_cast<double>(directions.size());
+    };
+    std::uint32_t last = 0;
+    const double scan = time([&](const Vec3<T>& x) { return hull.support_index_scan(x); });
+    const double warm = time([&](const Vec3<T>& x) { return last = hull.support_index_hill_climb(x, last); });
+    const double cold = time([&](const Vec3<T>& x) { return hull.support_index_hill_climb(x, hull.start_vertex(x)); });
+    std::printf("%-6s %4zu %8.1f %12.1f %13.1f%s\n", precision, hull.vertices().size(), scan, warm, cold, sink == 7 ? " " : "");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -95,6 +127,12 @@ int main(int argc, char** argv) {
     for (bool on_sphere : {true, false}) {
         run<double>("double", on_sphere, max_points, runs);
         run<float>("float", on_sphere, max_points, runs);
+    }
+    std::printf("\n# support search, ns per call: precision vertices scan climb_from_last climb_from_start (%d-lane scan)\n",
+                xeno::detail::native_width<float>());
+    for (const std::size_t n : {8, 16, 32, 64, 128, 256}) {
+        support_row<float>("float", n);
+        support_row<double>("double", n);
     }
     return 0;
 }

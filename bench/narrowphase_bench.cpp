@@ -1,7 +1,8 @@
 // SPDX-FileCopyrightText: 2026 The xeno authors
 // SPDX-License-Identifier: MIT
 //
-// Per-pair cost of the narrow phase: box–box, 32-vertex hull pairs, capsule–hull, the pairs
+// Per-pair cost of the narrow phase: box–box, 32-vertex hull pairs (a regular 16-sided prism, and
+// 32 random points on a sphere: `rhull32`), capsule–hull, the pairs
 // answered in closed form (sphere–sphere, sphere–capsule, capsule–capsule, sphere–box, capsule–box)
 // and curved pairs left to MPR (cylinder–cone, capsule–cone, cylinder–hull), overlapping and
 // separated (bounding spheres overlap, shapes do not: what a broad phase lets through), float and
@@ -20,6 +21,7 @@
 
 #include <xeno/collide/collide.hpp>
 #include <xeno/collide/sat.hpp>
+#include <xeno/shape/convex_hull.hpp>
 #include <xeno/shape/polyhedra.hpp>
 
 #ifdef XENO_HAVE_LIBCCD
@@ -192,10 +194,21 @@ void time_ccd(Row& r, const SA& a, const SB& b, const Poses<double>& poses) {
 #endif
 }
 
+// 32 points on a sphere of radius 0.5, every one a hull vertex: what users' hulls look like (a
+// regular prism has many parallel faces and symmetric ties).
+template <class T>
+ConvexPolyhedron<T> random_hull32() {
+    scenes::Random rng(32);
+    std::vector<Vec3<T>> points;
+    for (int i = 0; i < 32; ++i) points.push_back(rng.direction<T>() * T(0.5));
+    return make_convex_hull(points).polyhedron;
+}
+
 template <class T>
 struct Shapes {
     Box<T> box{T(0.5), T(0.5), T(0.5)};
     ConvexPolyhedron<T> hull = make_regular_prism(16, T(0.5), T(0.4));  // 32 vertices
+    ConvexPolyhedron<T> random_hull = random_hull32<T>();
     Sphere<T> sphere{T(0.5)};
     Capsule<T> capsule{T(0.25), T(0.5)};
     Cylinder<T> cylinder{T(0.4), T(0.5)};
@@ -263,6 +276,10 @@ TEST_CASE("narrow phase cost per pair, xeno against libccd in one run", "[summar
     both("cylinder-cone", d.cylinder, d.cone, f.cylinder, f.cone, 9);
     both("capsule-cone", d.capsule, d.cone, f.capsule, f.cone, 10);
     both("cylinder-hull32", d.cylinder, d.hull, f.cylinder, f.hull, 11);
+    // 32 random points on a sphere (the rows above use the 16-sided prism).
+    both("rhull32-rhull32", d.random_hull, d.random_hull, f.random_hull, f.random_hull, 12);
+    both("capsule-rhull32", d.capsule, d.random_hull, f.capsule, f.random_hull, 13);
+    both("cylinder-rhull32", d.cylinder, d.random_hull, f.cylinder, f.random_hull, 14);
 
     std::printf("\nNarrow phase, ns per pair (best of 7 sweeps over %d random poses; libccd is double only)\n", kPairs);
     std::printf("%-15s %-9s %-7s %13s %15s %11s %9s %9s | %14s %16s | %s\n", "pair", "set", "scalar", "mpr_intersect",
@@ -278,7 +295,8 @@ TEST_CASE("narrow phase cost per pair, xeno against libccd in one run", "[summar
     std::printf("\n");
     accuracy("box-box", d.box, d.box, 1);
     accuracy("hull32-hull32", d.hull, d.hull, 2);
-    CHECK(rows.size() == 44);
+    accuracy("rhull32-rhull32", d.random_hull, d.random_hull, 12);
+    CHECK(rows.size() == 56);
 }
 
 TEMPLATE_TEST_CASE("narrow phase queries", "[bench]", float, double) {

@@ -161,4 +161,36 @@ TEST_CASE("early-out: two unit boxes face to face, rejected from 2 % beyond touc
     CHECK(early.apart(0, 1, 0.005));
 }
 
+TEST_CASE_TEMPLATE("the world's narrow phase skips convex pairs the early-out finds apart, not those within the margin", T, float,
+                   double) {
+    // Two balls of radius 0.5 side by side along a diagonal: their boxes overlap whatever the gap,
+    // so the broad phase pairs them. Default settings, no gravity (nothing moves).
+    const auto step_pair = [](T gap) {
+        WorldSettings<T> settings;
+        settings.gravity = Vec3<T>::zero();
+        World<T> world(settings);
+        const T offset = (T(1) + gap) / std::sqrt(T(2));
+        BodyDef<T> def;
+        world.create_body(Sphere<T>(T(0.5)), def);
+        def.position = {offset, offset, T(0)};
+        world.create_body(Sphere<T>(T(0.5)), def);
+        world.step(T(1) / T(60));
+        return std::pair{world.last_step_stats(), world.contacts().size()};
+    };
+    const auto [far, far_contacts] = step_pair(T(0.15));
+    CHECK(far.broad_pairs == 1);
+    CHECK(far.apart_pairs == 1);  // rejected before the narrow phase
+    CHECK(far_contacts == 0);
+    // 1 cm apart: within the default speculative distance (2 cm), a speculative contact.
+    const auto [near, near_contacts] = step_pair(T(0.01));
+    CHECK(near.broad_pairs == 1);
+    CHECK(near.apart_pairs == 0);
+    CHECK(near_contacts == 1);
+    // 3 cm apart: beyond the margin but within the test's slack: left to the narrow phase,
+    // which finds no contact.
+    const auto [edge, edge_contacts] = step_pair(T(0.03));
+    CHECK(edge.apart_pairs == 0);
+    CHECK(edge_contacts == 0);
+}
+
 }  // namespace

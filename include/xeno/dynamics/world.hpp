@@ -132,6 +132,7 @@ struct WorldShapeCastHit {
 /// Counters of the last step, for benchmarks and tests.
 struct StepStats {
     std::size_t broad_pairs = 0;     ///< pairs whose boxes overlapped
+    std::size_t apart_pairs = 0;     ///< of those, convex pairs the early-out found apart (no narrow phase)
     std::size_t dropped_pairs = 0;   ///< of those, left out: more than settings.max_contact_pairs (a crowd)
     std::size_t contacts = 0;        ///< manifolds with at least one point
     std::size_t contact_points = 0;  ///< rows solved
@@ -1120,8 +1121,11 @@ template <class T>
 void World<T>::reject_apart_pairs(T dt) {
     constexpr int W = EarlyOut<T>::width;
     constexpr std::size_t kAhead = 16;  // second bodies come at random: keep a few misses in flight
+    stats_.apart_pairs = 0;
     const auto mark = [&](std::uint32_t k, bool apart) {
-        if (apart) pair_work_[k].kind = PairKind::apart;
+        if (!apart) return;
+        pair_work_[k].kind = PairKind::apart;
+        ++stats_.apart_pairs;
     };
     std::size_t j = 0;
     for (; j + W <= early_jobs_.size(); j += W) {

@@ -21,6 +21,7 @@
 
 #include "../error.hpp"
 #include "../math/aabb.hpp"
+#include "../math/wide.hpp"
 #include "mass_properties.hpp"
 #include "support_face.hpp"
 
@@ -233,7 +234,7 @@ public:
 
 private:
     std::vector<Vec3<T>> vertices_;
-    std::vector<T> xs_, ys_, zs_;  // the vertices again as coordinate arrays for the scan, padded to 4k
+    std::vector<T> xs_, ys_, zs_;  // the vertices again as coordinate arrays for the scan, padded to 8k
     std::vector<std::uint32_t> face_indices_;
     std::uint32_t axis_extreme_[6] = {};  // support vertices of +x, -x, +y, -y, +z, -z
     std::vector<Face> faces_;
@@ -266,7 +267,7 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices, const std::
             if (dot(vertices_[k], axis) > dot(vertices_[best], axis)) best = k;
         axis_extreme_[i] = best;
     }
-    for (std::size_t i = 0; i < (n + 3) / 4 * 4; ++i) {
+    for (std::size_t i = 0; i < (n + 7) / 8 * 8; ++i) {  // whole runs of the widest lanes (wide.hpp)
         const Vec3<T>& v = vertices_[i < n ? i : 0];
         xs_.push_back(v.x);
         ys_.push_back(v.y);
@@ -407,29 +408,32 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices, const std::
     inner_half_extents_ = e * fit - Vec3<T>::one() * (T(0.1) * fit * min_component(e));
 }
 
+// W running maxima in SIMD lanes (wide.hpp: 4 / 8 floats, 2 / 4 doubles, 1 without SIMD) over the
+// coordinate arrays, padded with copies of vertex 0. Each dot product is x·dx + y·dy + z·dz in
+// that order whatever W, a lane keeps its first maximum (strict >) and the lanes are merged
+// keeping the lowest index among equal values, so every width returns the same vertex. Indices
+// ride in the lanes as numbers of type T: exact below 2^24 vertices in float, far past any hull.
 template <class T>
 std::uint32_t ConvexPolyhedron<T>::support_index_scan(const Vec3<T>& d) const {
-    // Four independent running maxima over the coordinate arrays (padded to a multiple of four
-    // with copies of vertex 0): no loop-carried dependency between lanes, so the compiler can
-    // keep them in registers and use conditional moves or vector blends. Ties keep the lowest index.
-    T best[4] = {-ScalarTraits<T>::infinity, -ScalarTraits<T>::infinity, -ScalarTraits<T>::infinity, -ScalarTraits<T>::infinity};
-    std::uint32_t index[4] = {0, 0, 0, 0};
+    constexpr int W = detail::native_width<T>();
+    using V = detail::Wide<T, W>;
+    const V dx = V::splat(d.x), dy = V::splat(d.y), dz = V::splat(d.z), step = V::splat(T(W));
+    V best = V::splat(-ScalarTraits<T>::infinity), index = V::splat(T(0)), lane_index = V::splat(T(0));
+    for (int l = 0; l < W; ++l) lane_index.set(l, T(l));
     const std::size_t padded = xs_.size();
-    for (std::size_t i = 0; i < padded; i += 4) {
-        for (std::size_t lane = 0; lane < 4; ++lane) {
-            const T value = xs_[i + lane] * d.x + ys_[i + lane] * d.y + zs_[i + lane] * d.z;
-            const bool better = value > best[lane];
-            best[lane] = better ? value : best[lane];
-            index[lane] = better ? static_cast<std::uint32_t>(i + lane) : index[lane];
-        }
+    for (std::size_t i = 0; i < padded; i += W) {
+        const V value = V::loadu(&xs_[i]) * dx + V::loadu(&ys_[i]) * dy + V::loadu(&zs_[i]) * dz;
+        const typename V::Mask better = value > best;
+        best = select(better, value, best);
+        index = select(better, lane_index, index);
+        lane_index = lane_index + step;
     }
-    std::uint32_t result = index[0];
-    T result_value = best[0];
-    for (std::size_t lane = 1; lane < 4; ++lane)
-        if (best[lane] > result_value || (best[lane] == result_value && index[lane] < result)) {
-            result_value = best[lane];
-            result = index[lane];
-        }
+    std::uint32_t result = static_cast<std::uint32_t>(index.get(0));
+    T result_value = best.get(0);
+    for (int l = 1; l < W; ++l) {
+        const std::uint32_t k = static_cast<std::uint32_t>(index.get(l));
+        if (best.get(l) > result_value || (best.get(l) == result_value && k < result)) result_value = best.get(l), result = k;
+    }
     return result < vertices_.size() ? result : 0;
 }
 
