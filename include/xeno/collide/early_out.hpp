@@ -13,7 +13,7 @@
 // That is exact for boxes, spheres and capsules, an upper bound for cylinders (a capsule around
 // them), cones and hulls (their local box). A pair is reported apart only when
 //     |d|² (1 − 2⁻⁷) > (h_A + h_B + margin·|d|) (1 + 2⁻⁷),
-// a gap of about 1 % of the pair's size beyond the margin, so rounding in either computation (and
+// a gap of about 1.6 % of the centre distance beyond the margin, so rounding in either computation (and
 // a quaternion off unit length by the 1e-3 the queries accept) can never turn a pair MPR or the
 // closed-form tests would find touching into "apart": skipping the rejected pairs changes no
 // result (tests/collide/early_out_test.cpp). The rest go on to the narrow phase one by one.
