@@ -2,7 +2,9 @@
 // SPDX-License-Identifier: MIT
 //
 // The narrow phase as the world calls it: normal refinement and whole manifolds by clipping.
+#include "support/quantile.hpp"
 #include "support/approx.hpp"
+#include "support/poses.hpp"
 
 #include "scenes/random.hpp"
 
@@ -14,19 +16,9 @@
 #include <vector>
 
 using namespace xeno;
+using xeno::test::at;
 using xeno::test::near;
-
-namespace {
-template <class T>
-Transform<T> at(T x, T y, T z, const Quat<T>& q = Quat<T>::identity()) {
-    return {{x, y, z}, q};
-}
-template <class T>
-T quantile(std::vector<T> v, double q) {
-    std::sort(v.begin(), v.end());
-    return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
-}
-}  // namespace
+using xeno::test::quantile;
 
 TEST_CASE_TEMPLATE("refinement snaps a slightly tilted resting contact to the face normal", T, float, double) {
     const Box<T> cube_box(T(0.5), T(0.5), T(0.5)), slab_box(T(3), T(0.5), T(3));

@@ -19,9 +19,9 @@ using namespace xeno;
 namespace {
 
 #if defined(XENO_SANITIZE)
-constexpr int kPairs = 200;
+constexpr int kContractPairs = 200;
 #else
-constexpr int kPairs = 2000;
+constexpr int kContractPairs = 2000;
 #endif
 
 // Closed-form "surface gap" of a point against a placed primitive, in double: 0 on the surface,
@@ -123,12 +123,12 @@ TEST_CASE_TEMPLATE("face, edge and round contacts get both points exactly on the
 TEST_CASE_TEMPLATE("collide() contact points lie on or inside their own shapes within the depth, sizes up to 100:1", T, float,
                    double) {
     // Every shape kind, sizes 0.1 … 10 m, so the two shapes differ by up to 100 times.
-    const test::ContractResult r = test::check_contract<T>(61, kPairs, 0.1, 10.0);
+    const test::ContractResult r = test::check_contract<T>(61, kContractPairs, 0.1, 10.0);
     MESSAGE(r.hits << " overlapping pairs, " << r.violations
                    << " with a point outside its shape by more than the depth + 1e-4 of the size; "
                    << "worst (outside − depth) / size " << r.worst_excess << " (" << r.worst_pair
                    << "), worst |pa − pb − depth n| / size " << r.worst_offset);
-    CHECK(r.hits > kPairs / 4);
+    CHECK(r.hits > kContractPairs / 4);
     CHECK(r.violations == 0);
     CHECK(r.worst_offset <= 1e-4);
 }

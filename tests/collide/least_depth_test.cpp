@@ -21,9 +21,9 @@ using namespace xeno;
 namespace {
 
 #if defined(XENO_SANITIZE)
-constexpr int kPairs = 300;
+constexpr int kDepthPairs = 300;
 #else
-constexpr int kPairs = 2000;
+constexpr int kDepthPairs = 2000;
 #endif
 
 }  // namespace
@@ -88,11 +88,11 @@ TEST_CASE_TEMPLATE("the expansion from MPR's tetrahedron brackets the least dept
 
 TEST_CASE_TEMPLATE("regression (issue 12): 2,000 random MPR pairs, depth within 1 % of the least depth over all directions", T,
                    float, double) {
-    const test::DepthResult r = test::check_depth<T>(73, kPairs, 0.5, 10.0);
+    const test::DepthResult r = test::check_depth<T>(73, kDepthPairs, 0.5, 10.0);
     MESSAGE("depth / least depth:\n"
             << test::depth_table(r) << "shallow pairs: worst (depth - least) / size " << r.worst_shallow
             << "; below the reference: " << r.below << " (lowest ratio " << r.lowest << ")");
-    CHECK(r.all.size() > static_cast<std::size_t>(kPairs / 3));
+    CHECK(r.all.size() > static_cast<std::size_t>(kDepthPairs / 3));
     CHECK(r.below <= static_cast<int>(r.all.size() / 100));  // the dense search may stay a little high
     CHECK(test::quantile_of(r.all, 0.99) <= 1.0102);
     CHECK(test::quantile_of(r.all, 1.0) <= 1.0102);

@@ -5,6 +5,7 @@
 // for simple pairs, every case of docs/collision.md, "Degenerate cases", invariances on random
 // pairs, and the regressions other MPR/GJK implementations shipped.
 #include "support/approx.hpp"
+#include "support/poses.hpp"
 
 #include "scenes/random.hpp"
 
@@ -16,14 +17,10 @@
 #include <tuple>
 
 using namespace xeno;
+using xeno::test::at;
 using xeno::test::near;
 
 namespace {
-
-template <class T>
-Transform<T> at(T x, T y, T z, const Quat<T>& q = Quat<T>::identity()) {
-    return {{x, y, z}, q};
-}
 
 // A unit cube (half extent 0.5) rotated so that one corner points straight down (-y).
 template <class T>

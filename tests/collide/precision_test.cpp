@@ -8,6 +8,7 @@
 // be touching), and the distribution of |depth_float − depth_double| where both hit, all as
 // fractions of the pair's size (the sum of the bounding radii). The bounds asserted below are the
 // measured numbers with a margin; each is stated beside its checks.
+#include "support/quantile.hpp"
 #include "collide/random_pairs.hpp"
 
 #include <xeno/collide/collide.hpp>
@@ -19,20 +20,15 @@
 #include <vector>
 
 using namespace xeno;
+using xeno::test::quantile;
 
 namespace {
 
 #if defined(XENO_SANITIZE)
-constexpr int kPairs = 10'000;
+constexpr int kPrecisionPairs = 10'000;
 #else
-constexpr int kPairs = 200'000;
+constexpr int kPrecisionPairs = 200'000;
 #endif
-
-double quantile(std::vector<double> v, double q) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
-}
 
 struct Comparison {
     int pairs = 0, double_hits = 0;
@@ -83,7 +79,7 @@ Comparison compare(test::RandomPairs& pairs, int count) {
 
 TEST_CASE("float and double agree on random pairs: booleans never differ, shallow depths within 2e-4 of the size") {
     test::RandomPairs pairs(43, 0.1, 10.0, 10.0);
-    const Comparison r = compare(pairs, kPairs);
+    const Comparison r = compare(pairs, kPrecisionPairs);
     const double p50 = quantile(r.depth_error, 0.5), p99 = quantile(r.depth_error, 0.99), p999 = quantile(r.depth_error, 0.999),
                  worst = quantile(r.depth_error, 1.0);
     const double shallow_p99 = quantile(r.shallow_error, 0.99), shallow_worst = quantile(r.shallow_error, 1.0);
@@ -113,7 +109,7 @@ TEST_CASE("float and double agree on random pairs: booleans never differ, shallo
 TEST_CASE("float and double on pairs within a hair of touching: booleans differ only inside the face-preference band") {
     test::RandomPairs pairs(44, 0.1, 10.0, 10.0);
     pairs.set_touching_fraction(1.0);
-    const Comparison r = compare(pairs, kPairs / 4);
+    const Comparison r = compare(pairs, kPrecisionPairs / 4);
     MESSAGE("near-touching pairs: " << r.pairs << ", double hits " << r.double_hits << "; boolean differs: collide() "
                                     << r.collide_differs << " times (" << 100.0 * r.collide_differs / r.pairs
                                     << " %), intersect() " << r.intersect_differs << " (" << 100.0 * r.intersect_differs / r.pairs

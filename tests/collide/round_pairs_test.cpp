@@ -5,7 +5,9 @@
 // hand-computed cases, degenerate cases, a randomised comparison with an independent computation
 // (distances by golden-section search on the cores, depths of crossing cores by a dense search
 // over normals of D's support function), manifolds, and bodies resting on a floor.
+#include "support/quantile.hpp"
 #include "support/approx.hpp"
+#include "support/poses.hpp"
 #include "support/sim.hpp"
 
 #include "scenes/random.hpp"
@@ -16,14 +18,11 @@
 #include <vector>
 
 using namespace xeno;
+using xeno::test::at;
 using xeno::test::near;
+using xeno::test::quantile;
 
 namespace {
-
-template <class T>
-Transform<T> at(T x, T y, T z, const Quat<T>& q = Quat<T>::identity()) {
-    return {{x, y, z}, q};
-}
 
 template <class T>
 Quat<T> about(const Vec3<T>& axis, double angle) {
@@ -186,12 +185,6 @@ Shape<T> random_shape(scenes::Random& rng, int kind) {
     if (kind == 0) return Sphere<T>(s * rng.uniform(T(0.3), T(1)));
     if (kind == 1) return Capsule<T>(s * rng.uniform(T(0.1), T(0.6)), s * rng.uniform(T(0), T(1)));
     return Box<T>(s * rng.uniform(T(0.1), T(1)), s * rng.uniform(T(0.1), T(1)), s * rng.uniform(T(0.1), T(1)));
-}
-
-template <class T>
-T quantile(std::vector<T> v, double q) {
-    std::sort(v.begin(), v.end());
-    return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 // start overlapping report fraction 0) and against an independent search: for random pairs of
 // every shape kind, the first fraction at which intersect() holds, found by sampling the path and
 // bisecting. Then World::shape_cast through the query trees with filters, against a scan.
+#include "support/poses.hpp"
 #include "collide/random_pairs.hpp"
 
 #include <xeno/collide/shape_cast.hpp>
@@ -16,16 +17,12 @@
 #include <cmath>
 
 using namespace xeno;
+using xeno::test::at;
 
 namespace {
 
 template <class T>
-Transform<T> at(T x, T y, T z) {
-    return {Vec3<T>{x, y, z}, Quat<T>::identity()};
-}
-
-template <class T>
-T tolerance() {
+T cast_tolerance() {
     return std::is_same_v<T, float> ? T(2e-4) : T(1e-7);
 }
 
@@ -38,7 +35,7 @@ TEST_CASE_TEMPLATE("a sphere swept at a box hits where a ray meets the box infla
     std::optional<ShapeCastHit<T>> hit = shape_cast(ball, at(T(0), T(0.3), T(0.2)), sweep, box, at(T(5), T(0), T(0)));
     REQUIRE(hit);
     CHECK(!hit->initially_overlapping);
-    CHECK(std::abs(hit->fraction - T(0.35)) < tolerance<T>());
+    CHECK(std::abs(hit->fraction - T(0.35)) < cast_tolerance<T>());
     CHECK(length(hit->normal - Vec3<T>::unit_x()) < T(1e-3));
     CHECK(length(hit->point - Vec3<T>{T(4), T(0.3), T(0.2)}) < T(1e-3));
     // Edge: past the top face by 0.2 m, the inflated box's rounded edge (radius 0.5 about the line
@@ -46,7 +43,7 @@ TEST_CASE_TEMPLATE("a sphere swept at a box hits where a ray meets the box infla
     hit = shape_cast(ball, at(T(0), T(1.2), T(0)), sweep, box, at(T(5), T(0), T(0)));
     REQUIRE(hit);
     const T x = T(4) - std::sqrt(T(0.25) - T(0.04));
-    CHECK(std::abs(hit->fraction - x / T(10)) < tolerance<T>());
+    CHECK(std::abs(hit->fraction - x / T(10)) < cast_tolerance<T>());
     const Vec3<T> expected_normal = normalized(Vec3<T>{T(4) - x, T(1) - T(1.2), T(0)});
     CHECK(length(hit->normal - expected_normal) < T(1e-3));
     CHECK(length(hit->point - Vec3<T>{T(4), T(1), T(0)}) < T(1e-3));
@@ -65,7 +62,7 @@ TEST_CASE_TEMPLATE("a box swept face-on at a box meets it at gap / speed; overla
     const std::optional<ShapeCastHit<T>> hit =
         shape_cast(a, Transform<T>{Vec3<T>::zero(), tilt}, Vec3<T>{T(4), T(0), T(0)}, b, at(T(3), T(0.1), T(0)));
     REQUIRE(hit);
-    CHECK(std::abs(hit->fraction - T(2) / T(4)) < tolerance<T>());  // gap 3 − 0.5 − 0.5 = 2 m at 4 m
+    CHECK(std::abs(hit->fraction - T(2) / T(4)) < cast_tolerance<T>());  // gap 3 − 0.5 − 0.5 = 2 m at 4 m
     CHECK(length(hit->normal - Vec3<T>::unit_x()) < T(1e-3));
     CHECK(std::abs(hit->point.x - T(2.5)) < T(1e-3));  // on B's face
     // Overlapping where it starts.
@@ -126,9 +123,9 @@ TEST_CASE_TEMPLATE("shape casts of random pairs of every kind agree with a searc
         ++hits;
         REQUIRE(hit);
         CHECK(!hit->initially_overlapping);
-        // The cast stops within its tolerance (geometric_tolerance × the problem's size) of B, and
+        // The cast stops within its cast_tolerance (geometric_tolerance × the problem's size) of B, and
         // the reference's intersect() (MPR) decides overlap within its own, max(geometric
-        // tolerance, 1e-7) × size (mpr.hpp); along the sweep a distance d is d over the speed at
+        // cast_tolerance, 1e-7) × size (mpr.hpp); along the sweep a distance d is d over the speed at
         // which A approaches B, |sweep|·cos θ (θ between the sweep and the normal).
         const T approach = length(sweep) * std::max(std::abs(dot(hit->normal, dir)), T(1e-3));
         const T size = scale + length(sweep) + distance(start.position, pose_b.position);
@@ -166,7 +163,7 @@ TEST_CASE_TEMPLATE("a capsule moved sideways a few millimetres above a 100 m gro
         shape_cast(capsule, at(T(3), T(0.81), T(-2)), Vec3<T>{T(0.03), T(-0.02), T(0)}, ground, ground_pose);
     REQUIRE(landing);
     CHECK(!landing->initially_overlapping);
-    CHECK(std::abs(landing->fraction - T(0.5)) < T(20) * tolerance<T>());
+    CHECK(std::abs(landing->fraction - T(0.5)) < T(20) * cast_tolerance<T>());
     CHECK(length(landing->normal + Vec3<T>::unit_y()) < T(1e-3));
 }
 
@@ -190,13 +187,13 @@ TEST_CASE_TEMPLATE("World::shape_cast finds the first body along the sweep, with
     std::optional<WorldShapeCastHit<T>> hit = w.shape_cast(ball, start, sweep);
     REQUIRE(hit);
     CHECK(hit->body == near_box);
-    CHECK(std::abs(hit->hit.fraction - T(2.1) / T(10)) < tolerance<T>());
+    CHECK(std::abs(hit->hit.fraction - T(2.1) / T(10)) < cast_tolerance<T>());
     QueryFilter<T> skip_near;
     skip_near.ignore_body = near_box;
     hit = w.shape_cast(ball, start, sweep, skip_near);
     REQUIRE(hit);
     CHECK(hit->body == far_box);
-    CHECK(std::abs(hit->hit.fraction - T(5.1) / T(10)) < tolerance<T>());
+    CHECK(std::abs(hit->hit.fraction - T(5.1) / T(10)) < cast_tolerance<T>());
     QueryFilter<T> layer_one;
     layer_one.mask = 1u;
     layer_one.ignore_body = near_box;
@@ -205,7 +202,7 @@ TEST_CASE_TEMPLATE("World::shape_cast finds the first body along the sweep, with
     hit = w.shape_cast(ball, start, Vec3<T>{T(0), T(-1), T(0)});
     REQUIRE(hit);
     CHECK(hit->body == ground);
-    CHECK(std::abs(hit->hit.fraction - T(0.1)) < tolerance<T>());
+    CHECK(std::abs(hit->hit.fraction - T(0.1)) < cast_tolerance<T>());
     hit = w.shape_cast(ball, at(T(0), T(0.3), T(0)), sweep);
     REQUIRE(hit);
     CHECK(hit->body == ground);
@@ -226,14 +223,14 @@ TEST_CASE_TEMPLATE("a compound swept at a wall stops where its leading part touc
     // The wall (face at x = 5) spans z from 0.5 to 3: only the ball at z = +1 meets it, at x = 4.5.
     std::optional<ShapeCastHit<T>> hit = shape_cast(dumbbell, at(T(0), T(0), T(0)), sweep, wall, at(T(5.5), T(0), T(1.75)));
     REQUIRE(hit);
-    CHECK(std::abs(hit->fraction - T(0.45)) < tolerance<T>());
+    CHECK(std::abs(hit->fraction - T(0.45)) < cast_tolerance<T>());
     CHECK(length(hit->normal - Vec3<T>::unit_x()) < T(1e-3));
     CHECK(std::abs(hit->point.z - T(1)) < T(1e-3));
     // Turned a quarter about y, the balls lie along x: the leading one (1 m ahead) touches at 3.5.
     const Transform<T> turned{Vec3<T>::zero(), Quat<T>::from_axis_angle(Vec3<T>::unit_y(), ScalarTraits<T>::pi / T(2))};
     hit = shape_cast(dumbbell, turned, sweep, wall, at(T(5.5), T(0), T(0)));
     REQUIRE(hit);
-    CHECK(std::abs(hit->fraction - T(0.35)) < tolerance<T>());
+    CHECK(std::abs(hit->fraction - T(0.35)) < cast_tolerance<T>());
     // Through the world: the same, with the wall as a body; a filter that ignores it gives nothing.
     World<T> w;
     BodyDef<T> d;
@@ -243,7 +240,7 @@ TEST_CASE_TEMPLATE("a compound swept at a wall stops where its leading part touc
     std::optional<WorldShapeCastHit<T>> world_hit = w.shape_cast(dumbbell, at(T(0), T(0), T(0)), sweep);
     REQUIRE(world_hit);
     CHECK(world_hit->body == body);
-    CHECK(std::abs(world_hit->hit.fraction - T(0.45)) < tolerance<T>());
+    CHECK(std::abs(world_hit->hit.fraction - T(0.45)) < cast_tolerance<T>());
     QueryFilter<T> skip;
     skip.ignore_body = body;
     CHECK(!w.shape_cast(dumbbell, at(T(0), T(0), T(0)), sweep, skip));

@@ -28,9 +28,9 @@ using namespace xeno;
 namespace {
 
 #if defined(XENO_SANITIZE)
-constexpr int kPairs = 17'000;
+constexpr int kSweepPairs = 17'000;
 #else
-constexpr int kPairs = 350'000;
+constexpr int kSweepPairs = 350'000;
 #endif
 constexpr int kQueriesPerPair = 3;
 
@@ -82,7 +82,7 @@ TEST_CASE_TEMPLATE("a million random narrow-phase queries give finite unit-norma
         if (failures++ == 0) first_failure = describe<T>(p, what);
     };
     const auto start = std::chrono::steady_clock::now();
-    for (int k = 0; k < kPairs; ++k) {
+    for (int k = 0; k < kSweepPairs; ++k) {
         const test::PairParams p = pairs.next();
         const Shape<T>& a = maker.get(p.a, scratch_a);
         const Shape<T>& b = maker.get(p.b, scratch_b);
@@ -114,15 +114,15 @@ TEST_CASE_TEMPLATE("a million random narrow-phase queries give finite unit-norma
         }
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    MESSAGE((kPairs * kQueriesPerPair) << " queries in " << query_seconds << " s (" << seconds
-                                       << " s with drawing the pairs); hits " << hits << "; intersect/collide disagree "
-                                       << disagreements << " times, all within " << widest_gap
-                                       << " of the pair's size from touching, reported depth at most " << worst_band
-                                       << " of the size; MPR at most " << max_iterations << " support calls; slowest pair "
-                                       << slowest_pair * 1e3 << " ms");
+    MESSAGE((kSweepPairs * kQueriesPerPair) << " queries in " << query_seconds << " s (" << seconds
+                                            << " s with drawing the pairs); hits " << hits << "; intersect/collide disagree "
+                                            << disagreements << " times, all within " << widest_gap
+                                            << " of the pair's size from touching, reported depth at most " << worst_band
+                                            << " of the size; MPR at most " << max_iterations << " support calls; slowest pair "
+                                            << slowest_pair * 1e3 << " ms");
     CHECK_MESSAGE(failures == 0, first_failure);
     CHECK(worst_band <= disagreement_band<T>());
-    CHECK(hits > kPairs / 4);            // the sweep really exercises contacts ...
-    CHECK(hits < kPairs - kPairs / 10);  // ... and misses
-    CHECK(slowest_pair < 1.0);           // no query anywhere near a hang, even on a loaded machine
+    CHECK(hits > kSweepPairs / 4);                 // the sweep really exercises contacts ...
+    CHECK(hits < kSweepPairs - kSweepPairs / 10);  // ... and misses
+    CHECK(slowest_pair < 1.0);                     // no query anywhere near a hang, even on a loaded machine
 }

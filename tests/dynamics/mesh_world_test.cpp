@@ -41,7 +41,7 @@ enum class Floor { mesh, heightfield, box };
 
 /// The floor at y = 0 as a mesh, a heightfield of the same plane, or one static box.
 template <class T>
-BodyId add_floor(World<T>& w, Floor floor) {
+BodyId add_level_floor(World<T>& w, Floor floor) {
     BodyDef<T> d;
     d.type = BodyType::static_body;
     if (floor == Floor::mesh) return w.create_body(flat_mesh<T>(), d);
@@ -63,7 +63,7 @@ TEST_CASE_TEMPLATE("a box slides across a mesh and a heightfield as on one box: 
     for (const Floor floor : {Floor::mesh, Floor::heightfield}) {
         for (const T yaw : {T(0), T(30)}) {  // square to the grid, and across its diagonals
             World<T> w(C::settings());
-            add_floor(w, floor);
+            add_level_floor(w, floor);
             BodyDef<T> d;
             d.position = {T(-7), T(0.5), T(0.2)};
             d.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_y(), yaw * ScalarTraits<T>::pi / T(180));
@@ -147,7 +147,7 @@ TEST_CASE_TEMPLATE("a sphere rolls across a mesh diagonally without losing speed
     T final_speed[3] = {};
     for (const Floor floor : {Floor::mesh, Floor::heightfield, Floor::box}) {
         World<T> w(C::settings());
-        add_floor(w, floor);
+        add_level_floor(w, floor);
         BodyDef<T> d;
         d.position = {T(-4), T(0.5), T(-3.877)};  // off the vertices, so it crosses edges and corners alike
         const Vec3<T> v = normalized(Vec3<T>{T(1), T(0), T(1)}) * T(2);

@@ -24,7 +24,7 @@ using namespace xeno;
 namespace {
 
 template <class T>
-Shape<T> random_shape(scenes::Random& rng) {
+Shape<T> random_query_shape(scenes::Random& rng) {
     const T a = rng.uniform(T(0.2), T(1)), b = rng.uniform(T(0.2), T(1)), c = rng.uniform(T(0.2), T(1));
     switch (rng.index(6)) {
         case 0: return Sphere<T>(a);
@@ -57,10 +57,11 @@ World<T> random_world(scenes::Random& rng, int n) {
             def.linear_velocity = rng.direction<T>() * rng.uniform(T(0), T(rng.index(5) == 0 ? 60 : 3));
         if (rng.index(8) == 0) {
             std::vector<CompoundChild<T>> parts;
-            for (int k = 0; k < 3; ++k) parts.push_back({random_shape<T>(rng), {rng.in_box(Vec3<T>::one()), rng.rotation<T>()}});
+            for (int k = 0; k < 3; ++k)
+                parts.push_back({random_query_shape<T>(rng), {rng.in_box(Vec3<T>::one()), rng.rotation<T>()}});
             world.create_body(Compound<T>(std::move(parts)), def);
         } else {
-            world.create_body(random_shape<T>(rng), def);
+            world.create_body(random_query_shape<T>(rng), def);
         }
     }
     return world;
@@ -184,7 +185,7 @@ void check_queries(scenes::Random& rng, const World<T>& world, int queries, Coun
         });
         CHECK(world.overlap_sphere(point, radius, filter) == touched);
 
-        const Shape<T> probe = random_shape<T>(rng);
+        const Shape<T> probe = random_query_shape<T>(rng);
         const Transform<T> pose{point, rng.rotation<T>()};
         const auto hit_by_shape = scan_overlap(world, filter, [&](const Body<T>& b) {
             for (std::uint32_t k = 0; k < b.child_count(); ++k)

@@ -9,6 +9,7 @@
 // non-positive density (shape/mass_properties_test.cpp) and non-finite MPR poses
 // (collide/mpr_test.cpp). The regressions at the end are inputs the library accepted before this
 // file existed and answered with NaN, infinity or a wrong answer.
+#include "support/rejection.hpp"
 #include "support/approx.hpp"
 
 #include <xeno/xeno.hpp>
@@ -21,31 +22,9 @@
 #include <vector>
 
 using namespace xeno;
+using xeno::test::rejection;
 
 namespace {
-
-/// The message of the InvalidArgument that f throws, "accepted" if it throws nothing, and a note
-/// if it throws something else.
-std::string rejection(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const InvalidArgument& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        return std::string("not an InvalidArgument: ") + e.what();
-    }
-    return "accepted";
-}
-
-/// Checks that the expression is rejected with a message containing both fragments (typically the
-/// function and the argument).
-#define CHECK_REJECTED(expression, where, what)                              \
-    do {                                                                     \
-        const std::string message_ = rejection([&] { (void)(expression); }); \
-        INFO(#expression << "  ->  " << message_);                           \
-        CHECK(message_.find(where) != std::string::npos);                    \
-        CHECK(message_.find(what) != std::string::npos);                     \
-    } while (false)
 
 template <class T>
 std::vector<T> non_positive_or_non_finite() {

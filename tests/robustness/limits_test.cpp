@@ -7,6 +7,7 @@
 // square overflows, quaternions whose squared length under- or overflows, compound children
 // beyond the size range, time steps and settings beyond what a step can use, and error messages
 // that named the wrong component.
+#include "support/rejection.hpp"
 #include "support/approx.hpp"
 
 #include <xeno/xeno.hpp>
@@ -21,28 +22,9 @@
 #include <vector>
 
 using namespace xeno;
+using xeno::test::rejection;
 
 namespace {
-
-/// The message of the InvalidArgument that f throws, or "accepted".
-std::string rejection(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const InvalidArgument& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        return std::string("not an InvalidArgument: ") + e.what();
-    }
-    return "accepted";
-}
-
-#define CHECK_REJECTED(expression, where, what)                              \
-    do {                                                                     \
-        const std::string message_ = rejection([&] { (void)(expression); }); \
-        INFO(#expression << "  ->  " << message_);                           \
-        CHECK(message_.find(where) != std::string::npos);                    \
-        CHECK(message_.find(what) != std::string::npos);                     \
-    } while (false)
 
 template <class T>
 bool body_finite(const Body<T>& b) {
