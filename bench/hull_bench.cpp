@@ -104,6 +104,7 @@ void support_row(const char* precision, std::size_t n) {
     const double scan = time([&](const Vec3<T>& x) { return hull.support_index_scan(x); });
     const double warm = time([&](const Vec3<T>& x) { return last = hull.support_index_hill_climb(x, last); });
     const double cold = time([&](const Vec3<T>& x) { return hull.support_index_hill_climb(x, hull.start_vertex(x)); });
+    // sink is printed (as nothing) so the compiler must keep every search it sums.
     std::printf("%-6s %4zu %8.1f %12.1f %13.1f%s\n", precision, hull.vertices().size(), scan, warm, cold, sink == 7 ? " " : "");
 }
 
