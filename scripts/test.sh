@@ -6,7 +6,7 @@
 #      the native one; CMake's Release default is -O3), warnings as errors: tests (unit + slow;
 #      the unit-test files at -O1, tests/CMakeLists.txt), benchmarks and examples built
 #   2. clang++ with -fsanitize=address,undefined -fno-sanitize-recover=all (-O1, line tables; the
-#      unit-test files at -O0, which compile 4x faster and run as fast: their time is the library's),
+#      unit-test files at -O0, and run file by file: tests/CMakeLists.txt says why),
 #      warnings as errors: every header alone, the unit and slow tests, and the libFuzzer targets
 #      (which add -fsanitize=fuzzer) run for a bounded time
 #   3. clang++ -O2: the determinism program header-only, whose scene hashes must equal g++'s
@@ -65,7 +65,7 @@ step "clang++ with AddressSanitizer and UndefinedBehaviorSanitizer, -Werror: hea
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 configure_and_test clang-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
   -DXENO_BUILD_BENCH=OFF -DXENO_BUILD_EXAMPLES=OFF -DXENO_BUILD_HEADER_CHECK=ON -DXENO_BUILD_FUZZ=ON -DXENO_SANITIZE=ON \
-  -DXENO_UNIT_TEST_OPTIMIZATION=-O0 \
+  -DXENO_UNIT_TEST_OPTIMIZATION=-O0 -DXENO_TESTS_PER_FILE=ON \
   "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 
 step "clang++: a header-only Release build steps every scene to g++'s state hashes; ThreadSanitizer on the tests that step on several workers"
