@@ -127,6 +127,7 @@ double maximise_on_sphere(F&& f, int samples = 800, int starts = 6, const std::v
     for (const Sample& x : s) low = std::min(low, x.value);
     const double gain = 1e-13 * (best - low) + 1e-300;
     const double spacing = std::sqrt(4.0 * 3.14159265358979323846 / samples);
+    const std::array<std::array<double, 2>, 36>& compass = compass_directions();
     for (int i = 0; i < k; ++i) {
         Vec3<double> d = s[static_cast<std::size_t>(i)].d;
         double value = s[static_cast<std::size_t>(i)].value;
@@ -138,7 +139,7 @@ double maximise_on_sphere(F&& f, int samples = 800, int starts = 6, const std::v
             const Vec3<double> t2 = cross(d, t1);
             bool moved = false;
             for (int j = 0; j < 12; ++j) {
-                const std::array<double, 2>& cs = compass_directions()[static_cast<std::size_t>((turn % 3) * 12 + j)];
+                const std::array<double, 2>& cs = compass[static_cast<std::size_t>((turn % 3) * 12 + j)];
                 const Vec3<double> trial = normalized(d + (t1 * cs[0] + t2 * cs[1]) * step);
                 const double v = f(trial);
                 if (v > value + gain) {
