@@ -24,6 +24,9 @@
 #include <mutex>
 #include <thread>
 #include <vector>
+#if defined(__x86_64__) || defined(__i386__) || defined(_M_X64) || defined(_M_IX86)
+#include <immintrin.h>  // _mm_pause
+#endif
 
 namespace xeno {
 
@@ -33,6 +36,22 @@ struct RangeTask {
     const void* context;
     void operator()(std::uint32_t begin, std::uint32_t end) const { run(context, begin, end); }
 };
+
+namespace detail {
+
+/// One turn of a wait loop: the CPU's spin-wait hint, and every 64th turn a yield to the OS
+/// (a thread the OS would rather run, or the one being waited for on a busy machine). A yield
+/// every turn made each wait a system call, which costs microseconds on a virtual machine.
+inline void spin_pause(unsigned spin) {
+#if defined(__x86_64__) || defined(__i386__) || defined(_M_X64) || defined(_M_IX86)
+    _mm_pause();
+#elif defined(__aarch64__) && (defined(__GNUC__) || defined(__clang__))
+    __asm__ __volatile__("yield");
+#endif
+    if (spin % 64 == 0) std::this_thread::yield();
+}
+
+}  // namespace detail
 
 /// What the world needs from a job system.
 class TaskSystem {
@@ -62,10 +81,13 @@ void parallel_for(TaskSystem* tasks, std::uint32_t count, std::uint32_t min_rang
 }
 
 /// The default task system: workers − 1 std::threads plus the caller. A parallel_for cuts the
-/// work into two to four ranges per worker (so a worker delayed by the OS is covered by the others)
-/// and every thread claims ranges from one atomic counter. After a call the threads spin for up
-/// to 200 µs (a step issues hundreds of short calls, one per colour and substep) and then sleep on
-/// a condition variable, so an idle pool costs nothing.
+/// work into two to four ranges per worker (so a worker delayed by the OS is covered by the others,
+/// at most 32) and each thread first claims the ranges of its own share, the k-th of `workers`
+/// equal shares, then any left: the world hands out items in body order, so a thread keeps
+/// touching the same bodies call after call (colour after colour, substep after substep) and
+/// their cache lines stay in its core instead of moving between cores. After a call the threads
+/// spin for up to 200 µs (a step issues hundreds of short calls, one per colour and substep) and
+/// then sleep on a condition variable, so an idle pool costs nothing.
 class ThreadPool final : public TaskSystem {
 public:
     static constexpr unsigned max_workers = 256;
@@ -75,7 +97,7 @@ public:
         if (workers < 1 || workers > max_workers)
             detail::report_invalid("ThreadPool", "workers must be between 1 and 256", static_cast<double>(workers));
         threads_.reserve(workers - 1);
-        for (unsigned i = 1; i < workers; ++i) threads_.emplace_back([this] { work(); });
+        for (unsigned i = 1; i < workers; ++i) threads_.emplace_back([this, i] { work(i); });
     }
     ThreadPool(const ThreadPool&) = delete;
     ThreadPool& operator=(const ThreadPool&) = delete;
@@ -98,46 +120,67 @@ public:
         // Two to four ranges per worker: 75 items in ranges of 32 would be 3 ranges, and one of
         // two workers would do two thirds; one range each leaves the caller waiting whenever the
         // OS pauses the other worker.
-        const std::uint32_t ranges = std::min<std::uint32_t>({count, 4u * workers_, std::max(2u * workers_, count / min_range)});
+        const std::uint32_t ranges =
+            std::min<std::uint32_t>({count, max_ranges, 4u * workers_, std::max(2u * workers_, count / min_range)});
         task_ = task;
         count_ = count;
         ranges_ = ranges;
         done_.store(0, std::memory_order_relaxed);
-        // Publishing the new generation with a zero claim count opens the job; a thread can
-        // only claim a range of the generation it saw, so a late thread never runs a stale job.
+        // Publishing the new generation with its ranges unclaimed (the bits past them set) opens
+        // the job; a thread can only claim a range of the generation it saw, so a late thread
+        // never runs a stale job.
         const std::uint64_t generation = (state_.load(std::memory_order_relaxed) >> 32) + 1;
-        state_.store(generation << 32, std::memory_order_release);
+        const std::uint64_t past_ranges = ranges == max_ranges ? 0u : closed << ranges & closed;
+        state_.store(generation << 32 | past_ranges, std::memory_order_release);
         {
             std::lock_guard<std::mutex> lock(mutex_);  // orders the store before a sleeper's check
         }
         wake_.notify_all();
-        run_ranges(generation);
-        while (done_.load(std::memory_order_acquire) != ranges) std::this_thread::yield();
+        run_ranges(generation, 0);
+        for (unsigned spin = 1; done_.load(std::memory_order_acquire) != ranges; ++spin) detail::spin_pause(spin);
         // Closed: a thread still holding this generation's state fails its claim, so the job
         // fields can be rewritten for the next call.
         state_.store(generation << 32 | closed, std::memory_order_release);
     }
 
 private:
-    static constexpr std::uint64_t closed = 0xffffffffu;
+    static constexpr std::uint32_t max_ranges = 32;       ///< one bit each in the state word
+    static constexpr std::uint64_t closed = 0xffffffffu;  ///< every range claimed
     static constexpr std::chrono::microseconds spin_time{200};
 
-    /// Claims and runs ranges of `generation` until none is left; counts the ones it ran.
-    void run_ranges(std::uint64_t generation) {
+    /// Claims and runs ranges of `generation` until none is left, thread `thread`'s share first
+    /// (the caller is thread 0); counts the ones it ran.
+    void run_ranges(std::uint64_t generation, unsigned thread) {
         std::uint64_t state = state_.load(std::memory_order_acquire);
         for (;;) {
-            if ((state >> 32) != generation) return;
-            const std::uint32_t index = static_cast<std::uint32_t>(state);
-            if (index >= ranges_.load(std::memory_order_relaxed)) return;
-            if (!state_.compare_exchange_weak(state, state + 1, std::memory_order_acq_rel, std::memory_order_acquire)) continue;
-            const std::uint64_t n = count_, r = ranges_;
+            if ((state >> 32) != generation || (state & closed) == closed) return;
+            // A stale ranges_ (a newer call's) only picks where to look: the claim below fails
+            // because the generation moved on.
+            const std::uint32_t r = ranges_.load(std::memory_order_relaxed);
+            const std::uint32_t index = next_range(static_cast<std::uint32_t>(state), r, thread);
+            if (!state_.compare_exchange_weak(state, state | std::uint64_t(1) << index, std::memory_order_acq_rel,
+                                              std::memory_order_acquire))
+                continue;
+            const std::uint64_t n = count_;
             task_(static_cast<std::uint32_t>(n * index / r), static_cast<std::uint32_t>(n * (index + 1) / r));
             done_.fetch_add(1, std::memory_order_acq_rel);
             state = state_.load(std::memory_order_acquire);
         }
     }
 
-    void work() {
+    /// The range `thread` claims next among `r` given the claimed bits (not all set): the first
+    /// of its own share, else the last one left, so that a thread that finished early takes
+    /// from the far end of a late thread's share and not the ranges it is about to claim.
+    std::uint32_t next_range(std::uint32_t claimed, std::uint32_t r, unsigned thread) const {
+        const auto share = [&](unsigned t) { return static_cast<std::uint32_t>(std::uint64_t(t) * r / workers_); };
+        for (std::uint32_t i = share(thread); i < share(thread + 1); ++i)
+            if (!(claimed >> i & 1u)) return i;
+        std::uint32_t i = max_ranges - 1;
+        while (claimed >> i & 1u) --i;  // ends: some bit is clear
+        return i;
+    }
+
+    void work(unsigned thread) {
         std::uint64_t seen = 0;
         for (;;) {
             // Spin, yielding, for up to spin_time: the gaps between a step's calls are mostly
@@ -145,11 +188,9 @@ private:
             // does not hold a core between steps.
             std::uint64_t generation = state_.load(std::memory_order_acquire) >> 32;
             const auto until = std::chrono::steady_clock::now() + spin_time;
-            for (unsigned spin = 0; generation == seen; ++spin) {
-                if (spin % 64 == 63) {
-                    if (std::chrono::steady_clock::now() > until) break;
-                    std::this_thread::yield();
-                }
+            for (unsigned spin = 1; generation == seen; ++spin) {
+                if (spin % 64 == 0 && std::chrono::steady_clock::now() > until) break;
+                detail::spin_pause(spin);
                 generation = state_.load(std::memory_order_acquire) >> 32;
             }
             if (generation == seen) {
@@ -159,7 +200,7 @@ private:
                 generation = state_.load(std::memory_order_acquire) >> 32;
             }
             seen = generation;
-            run_ranges(generation);
+            run_ranges(generation, thread);
         }
     }
 
@@ -168,7 +209,7 @@ private:
     std::mutex mutex_;
     std::condition_variable wake_;
     bool stopping_ = false;
-    std::atomic<std::uint64_t> state_{0};  ///< generation << 32 | ranges claimed
+    std::atomic<std::uint64_t> state_{0};  ///< generation << 32 | a bit per range, set once claimed
     std::atomic<std::uint32_t> done_{0};   ///< ranges finished in this generation
     // The job: written by the caller before it publishes a generation, read by a thread only
     // after it claimed a range of that generation (the caller waits for every range, so the

@@ -8,7 +8,10 @@
 // moving bodies has used; a row that finds none goes to the overflow set, solved one by one
 // before the colours. Static bodies are slot 0 and take no colour, so a pile on the ground does
 // not fill a colour per box. Rebuilt every step from the rows in their (deterministic) order, so
-// the same scene gives the same colours whatever happened to memory.
+// the same scene gives the same colours whatever happened to memory. Inside a colour the rows are
+// listed by their lower moving body, so that the workers, which take a colour in consecutive
+// ranges, each keep to the bodies the world placed in their share (World::prepare); the order
+// inside a colour changes no result, since its rows share no body.
 #pragma once
 
 #include <cstdint>
@@ -46,12 +49,18 @@ public:
             if (b != 0) used_[b] |= 1u << colour;
             ++colour_begin[static_cast<std::size_t>(colour) + 2];
         }
-        // Counting sort, stable: offsets, then rows in row order.
+        // Two counting sorts: the rows by lower moving body, then stably by colour.
+        by_body_.assign(bodies + 1, 0u);
+        for (std::size_t i = 0; i < rows; ++i) ++by_body_[lower_moving(body_a(i), body_b(i)) + 1u];
+        for (std::size_t k = 1; k <= bodies; ++k) by_body_[k] += by_body_[k - 1];
+        body_order_.resize(rows);
+        for (std::size_t i = 0; i < rows; ++i)
+            body_order_[by_body_[lower_moving(body_a(i), body_b(i))]++] = static_cast<std::uint32_t>(i);
         for (int c = 0; c < colours; ++c)
             colour_begin[static_cast<std::size_t>(c) + 2] += colour_begin[static_cast<std::size_t>(c) + 1];
         order.resize(rows - overflow.size());
-        for (std::size_t i = 0; i < rows; ++i)
-            if (colour_of_[i] < colours) order[colour_begin[colour_of_[i] + 1u]++] = static_cast<std::uint32_t>(i);
+        for (const std::uint32_t i : body_order_)
+            if (colour_of_[i] < colours) order[colour_begin[colour_of_[i] + 1u]++] = i;
         colour_begin.pop_back();
     }
     std::size_t colour_size(int c) const {
@@ -59,8 +68,13 @@ public:
     }
 
 private:
-    std::vector<std::uint32_t> used_;      ///< scratch: per solver body, a bit per colour taken
-    std::vector<std::uint8_t> colour_of_;  ///< scratch: per row, its colour (colours: overflow)
+    /// The row's lower body other than the static stand-in (a row has at least one moving body).
+    static std::uint32_t lower_moving(std::uint32_t a, std::uint32_t b) { return a == 0 ? b : (b == 0 ? a : (a < b ? a : b)); }
+
+    std::vector<std::uint32_t> used_;        ///< scratch: per solver body, a bit per colour taken
+    std::vector<std::uint8_t> colour_of_;    ///< scratch: per row, its colour (colours: overflow)
+    std::vector<std::uint32_t> by_body_;     ///< scratch: counting-sort offsets per solver body
+    std::vector<std::uint32_t> body_order_;  ///< scratch: the rows by lower moving body
 };
 
 }  // namespace detail

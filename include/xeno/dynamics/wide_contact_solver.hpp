@@ -183,6 +183,7 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
         const V applied = updated - p.normal_impulse;
         p.normal_impulse = updated;
         p.max_normal_impulse = max(p.max_normal_impulse, updated);
+        if (pass.last_of_substep) p.step_impulse = p.step_impulse + updated;
         apply_wide(A, B, masked, active, c.normal, applied, c.inv_mass_a, c.inv_mass_b, p.ia, p.ib);
         total = total + (masked ? select(active, updated, zero) : updated);
     }
@@ -326,11 +327,6 @@ public:
         for_each_colour(tasks, [&](std::uint32_t g) { solve_wide(groups_[g], bodies, pass); });
         bodies[0] = SolverBody<T>{};
     }
-    /// Adds each row's substep impulse to its step total (after every substep).
-    void accumulate_step_impulses() {
-        for (Single& c : overflow_) accumulate(c);
-        for (Group& c : groups_) accumulate(c);
-    }
     /// Copies the impulses back into the scalar rows.
     void unpack(std::vector<ContactConstraint<T>>& rows, TaskSystem* tasks) const {
         for (const Single& c : overflow_) unpack_lane(c, 0, rows[c.row[0]]);
@@ -370,10 +366,6 @@ private:
         c.max_count = 0;
         c.min_count = 4;
         return c;
-    }
-    template <int W>
-    static void accumulate(WideContact<T, W>& c) {
-        for (int i = 0; i < c.max_count; ++i) c.points[i].step_impulse = c.points[i].step_impulse + c.points[i].normal_impulse;
     }
 
     ConstraintColouring colouring_;

@@ -50,6 +50,7 @@
 #include <memory>
 #include <numeric>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace xeno {
@@ -499,6 +500,7 @@ private:
                                              const detail::Softness<T>& soft_static) const;
     /// Fewest items a worker is handed per stage (task_system.hpp): about a few µs of work each.
     static constexpr std::uint32_t bounds_range = 256, row_range = 64, integrate_range = 256, finish_range = 256;
+    void order_solver_bodies_in_space();
     void solve(T dt);
     void thin_crowded_pairs();
     void build_islands();
@@ -547,12 +549,14 @@ private:
     /// small moving ones made rays at 100,000 bodies twice as slow (world_query.hpp).
     AabbTree<T> query_trees_[2];
     std::vector<ProxyPair> pairs_;
-    std::vector<Contact<T>> contacts_;                     ///< sorted by (a.index, b.index)
-    std::vector<detail::SolverBody<T>> solver_bodies_;     ///< slot 0: static stand-in
-    std::vector<detail::SolverMass<T>> solver_masses_;     ///< per solver body
-    std::vector<std::uint32_t> solver_index_;              ///< per slot: index into solver_bodies_ (0: none)
-    std::vector<std::uint32_t> solver_slot_;               ///< per solver body: its slot
-    std::vector<detail::BodyIntegration<T>> integration_;  ///< per solver body: the step's constants
+    std::vector<Contact<T>> contacts_;                      ///< sorted by (a.index, b.index)
+    std::vector<detail::SolverBody<T>> solver_bodies_;      ///< slot 0: static stand-in
+    std::vector<detail::SolverMass<T>> solver_masses_;      ///< per solver body
+    std::vector<std::uint32_t> solver_index_;               ///< per slot: index into solver_bodies_ (0: none)
+    std::vector<std::uint32_t> solver_slot_;                ///< per solver body: its slot
+    std::vector<std::uint32_t> solver_order_;               ///< prepare: the slots of the solver bodies, in order
+    std::vector<std::pair<T, std::uint32_t>> solver_keys_;  ///< prepare, several workers: (place on the axis, slot)
+    std::vector<detail::BodyIntegration<T>> integration_;   ///< per solver body: the step's constants
     std::vector<detail::ContactConstraint<T>> constraints_;
     detail::WideContactRows<T> wide_rows_;  ///< constraints_ coloured and packed in SIMD lanes
     std::vector<Joint<T>> joints_;
@@ -575,6 +579,7 @@ private:
     std::vector<MeshManifolds> mesh_job_manifolds_;  ///< several workers: the manifolds of each of mesh_jobs_
     std::vector<std::uint8_t> old_taken_;            ///< last step's contacts of a mesh pair already matched (pass 3)
     std::vector<std::uint32_t> row_contacts_;        ///< per contact row: its contact (prepare)
+    std::vector<std::uint32_t> bouncing_rows_;       ///< the rows with a restitution, in row order (prepare)
     std::vector<std::uint32_t> collide_jobs_;        ///< several workers: the pairs of kind collided, in pair order
     std::vector<Contact<T>> job_contacts_;           ///< several workers: the contact of each of collide_jobs_
     std::vector<std::uint32_t> contact_start_;       ///< per slot: the end of its run in contact_list_ (index_contacts)
@@ -1384,6 +1389,28 @@ void World<T>::wake_touched_islands(T dt) {
         if (bodies_[i].alive_ && sleeping(i) && wake[find(i)]) bodies_[i].wake();
 }
 
+/// On several workers, the solver bodies in order along the axis their centres spread most on
+/// (ties by slot): the world hands out bodies, and each colour's rows, in solver order
+/// (constraint_graph.hpp), so each worker keeps to one slab of space and the bodies it writes stay
+/// in its core's cache across colours and substeps. In slot order a pile dropped in layers has
+/// every body written by both workers in every sweep, which made two workers no faster than one
+/// (docs/parallel.md). The order only places bodies in memory: rows of one colour share no body,
+/// so the result is the same bits in any order. One worker keeps slot order and skips the sort.
+template <class T>
+void World<T>::order_solver_bodies_in_space() {
+    const TaskSystem* tasks = tasks_.get();
+    if (tasks == nullptr || tasks->workers() <= 1 || solver_order_.size() < 2) return;
+    Vec3<T> lo = bodies_[solver_order_[0]].position_, hi = lo;
+    for (const std::uint32_t i : solver_order_) lo = min(lo, bodies_[i].position_), hi = max(hi, bodies_[i].position_);
+    const Vec3<T> extent = hi - lo;
+    const int axis = extent.x >= extent.y ? (extent.x >= extent.z ? 0 : 2) : (extent.y >= extent.z ? 1 : 2);
+    solver_keys_.resize(solver_order_.size());
+    for (std::size_t k = 0; k < solver_order_.size(); ++k)
+        solver_keys_[k] = {bodies_[solver_order_[k]].position_[axis], solver_order_[k]};
+    std::sort(solver_keys_.begin(), solver_keys_.end());
+    for (std::size_t k = 0; k < solver_order_.size(); ++k) solver_order_[k] = solver_keys_[k].second;
+}
+
 template <class T>
 void World<T>::prepare(T dt) {
     const T h = dt / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
@@ -1394,9 +1421,14 @@ void World<T>::prepare(T dt) {
     solver_slot_.assign(1, 0);
     integration_.assign(1, detail::BodyIntegration<T>{});
     std::fill(solver_index_.begin(), solver_index_.end(), 0u);
+    solver_order_.clear();
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         const Body<T>& b = bodies_[i];
-        if (!b.alive_ || !b.enabled_ || b.type_ == BodyType::static_body || !b.awake_) continue;
+        if (b.alive_ && b.enabled_ && b.type_ != BodyType::static_body && b.awake_) solver_order_.push_back(i);
+    }
+    order_solver_bodies_in_space();
+    for (const std::uint32_t i : solver_order_) {
+        const Body<T>& b = bodies_[i];
         solver_index_[i] = static_cast<std::uint32_t>(solver_bodies_.size());
         detail::SolverBody<T> s;
         // Velocities enter the solver within the integrator's caps: any finite velocity is
@@ -1424,6 +1456,7 @@ void World<T>::prepare(T dt) {
                                                       settings_.contact_damping_ratio, h);
     // Which contacts get a row (in contact order), then the rows, independently of each other.
     row_contacts_.clear();
+    bouncing_rows_.clear();
     for (std::uint32_t m = 0; m < contacts_.size(); ++m) {
         const Contact<T>& contact = contacts_[m];
         if (contact.sensor || contact.manifold.count == 0) continue;
@@ -1434,6 +1467,7 @@ void World<T>::prepare(T dt) {
         if ((ia == 0 && bodies_[contact.a.index].type_ == BodyType::dynamic) ||
             (ib == 0 && bodies_[contact.b.index].type_ == BodyType::dynamic))
             continue;
+        if (contact.restitution != T(0)) bouncing_rows_.push_back(static_cast<std::uint32_t>(row_contacts_.size()));
         row_contacts_.push_back(m);
         stats_.contact_points += static_cast<std::size_t>(contact.manifold.count);
     }
@@ -1563,6 +1597,9 @@ void World<T>::solve(T dt) {
         }
         pass.use_bias = true;
         for (int it = 0; it < settings_.velocity_iterations; ++it) {
+            // The substep's last pass adds each point's impulse to its step total (for events
+            // and restitution), inside the solve so that each worker does it for its own rows.
+            pass.last_of_substep = settings_.relax_iterations == 0 && it + 1 == settings_.velocity_iterations;
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
                 for (const detail::JointConstraint<T>& c : joint_rows_)
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
@@ -1574,16 +1611,16 @@ void World<T>::solve(T dt) {
         });
         pass.use_bias = false;
         for (int it = 0; it < settings_.relax_iterations; ++it) {
+            pass.last_of_substep = it + 1 == settings_.relax_iterations;
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
                 for (const detail::JointConstraint<T>& c : joint_rows_)
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], false, h);
             wide_rows_.solve(solver_bodies_, pass, tasks_.get());
         }
         solver_bodies_[0] = detail::SolverBody<T>{};
-        wide_rows_.accumulate_step_impulses();
     }
     wide_rows_.unpack(constraints_, tasks_.get());
-    detail::apply_restitution(constraints_, solver_bodies_, solver_masses_, settings_.restitution_threshold);
+    detail::apply_restitution(constraints_, bouncing_rows_, solver_bodies_, solver_masses_, settings_.restitution_threshold);
 }
 
 template <class T>
