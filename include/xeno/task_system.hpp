@@ -149,11 +149,12 @@ private:
     static constexpr std::chrono::microseconds spin_time{200};
 
     /// Claims and runs ranges of `generation` until none is left, thread `thread`'s share first
-    /// (the caller is thread 0); counts the ones it ran.
+    /// (the caller is thread 0); reports how many it ran once, at the end (the caller waits on
+    /// that count, and each report moves its cache line between cores).
     void run_ranges(std::uint64_t generation, unsigned thread) {
+        std::uint32_t ran = 0;
         std::uint64_t state = state_.load(std::memory_order_acquire);
-        for (;;) {
-            if ((state >> 32) != generation || (state & closed) == closed) return;
+        while ((state >> 32) == generation && (state & closed) != closed) {
             // A stale ranges_ (a newer call's) only picks where to look: the claim below fails
             // because the generation moved on.
             const std::uint32_t r = ranges_.load(std::memory_order_relaxed);
@@ -163,9 +164,10 @@ private:
                 continue;
             const std::uint64_t n = count_;
             task_(static_cast<std::uint32_t>(n * index / r), static_cast<std::uint32_t>(n * (index + 1) / r));
-            done_.fetch_add(1, std::memory_order_acq_rel);
+            ++ran;
             state = state_.load(std::memory_order_acquire);
         }
+        if (ran > 0) done_.fetch_add(ran, std::memory_order_acq_rel);
     }
 
     /// The range `thread` claims next among `r` given the claimed bits (not all set): the first
