@@ -242,7 +242,8 @@ public:
     void set_awake(BodyId id, bool awake);
 
     std::size_t body_count() const { return bodies_.size() - free_slots_.size(); }
-    /// Reserves room for this many bodies and contacts, so growing to them allocates once.
+    /// Reserves room for this many bodies and contacts, so growing to them allocates once (the
+    /// query tree of static bodies grows as static bodies are created).
     void reserve(std::size_t bodies, std::size_t contacts = 0);
     /// Calls f(BodyId, const Body<T>&) for every living body, in slot order.
     template <class F>
@@ -517,7 +518,8 @@ private:
         for (AabbTree<T>& tree : query_trees_)
             if (2 * tree.edits_since_build() >= tree.size()) tree.rebuild();
     }
-    AabbTree<T>& query_tree_of(std::uint32_t slot) { return query_trees_[bodies_[slot].type_ == BodyType::static_body ? 0 : 1]; }
+    AabbTree<T>& query_tree_for(BodyType type) { return query_trees_[type == BodyType::static_body ? 0 : 1]; }
+    AabbTree<T>& query_tree_of(std::uint32_t slot) { return query_tree_for(bodies_[slot].type_); }
     void report_events();
     // Query helpers (world_query.hpp).
     static void check_ray(const Ray<T>& ray, const char* where);
@@ -652,7 +654,9 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
         };
         make_room(bounds_), make_room(previous_pose_), make_room(solver_index_);
     }
-    for (AabbTree<T>& tree : query_trees_) tree.reserve(bodies_.size() + 1);  // the insert below cannot fail half-way
+    // The insert below cannot fail half-way. Only the tree of the body's type: room for every body
+    // in both trees cost 132 bytes a body (float) that a world of moving bodies never used.
+    query_tree_for(def.type).reserve(bodies_.size() + 1);
 
     std::uint32_t slot;
     if (!free_slots_.empty()) {
@@ -732,7 +736,7 @@ template <class T>
 void World<T>::reserve(std::size_t bodies, std::size_t contacts) {
     require_outside_filter("World::reserve");
     bounds_.reserve(bodies);
-    for (AabbTree<T>& tree : query_trees_) tree.reserve(bodies);
+    query_tree_for(BodyType::dynamic).reserve(bodies);
     previous_pose_.reserve(bodies);
     solver_index_.reserve(bodies);
     contacts_.reserve(contacts);
@@ -1002,10 +1006,9 @@ void World<T>::update_query_tree() {
 // From scratch (a restored snapshot): every living body, then one balanced build.
 template <class T>
 void World<T>::rebuild_query_tree() {
-    for (AabbTree<T>& tree : query_trees_) {
-        tree.clear();
-        tree.reserve(bodies_.size());
-    }
+    for (AabbTree<T>& tree : query_trees_) tree.clear();
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i)  // room up to each body's slot in its type's tree (create_body)
+        if (bodies_[i].alive_) query_tree_of(i).reserve(i + std::size_t(1));
     for (std::uint32_t i = 0; i < bodies_.size(); ++i)
         if (bodies_[i].alive_ && bodies_[i].enabled_) query_tree_of(i).insert(i, bodies_[i].world_bounds());
     for (AabbTree<T>& tree : query_trees_) tree.rebuild();

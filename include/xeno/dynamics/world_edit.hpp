@@ -27,8 +27,8 @@ void World<T>::require_centred(const Shape<T>& shape, const char* where) {
 
 /// The body's boxes after its pose, shape, type or enabled flag changed: the broad phase's (fat by
 /// the speculative distance; empty while disabled, so it pairs with nothing) and its place in the
-/// query tree of its type (none while disabled). Both trees have room for every slot
-/// (create_body reserves it), so nothing here allocates or throws.
+/// query tree of its type (none while disabled). The tree of the body's type has room for every
+/// slot up to it (create_body and set_type reserve it first), so nothing here allocates or throws.
 template <class T>
 void World<T>::place_in_broad_phase(std::uint32_t slot) {
     Body<T>& b = bodies_[slot];
@@ -206,6 +206,7 @@ void World<T>::set_type(BodyId id, BodyType type) {
                                    static_cast<double>(b.density_));
         m = dynamic_mass(b.shape_.get(), b.compound_.get(), b.density_, T(0), where);
     }
+    query_tree_for(type).reserve(bodies_.size());  // may throw: before anything changes
     wake_contacts_of(slot);
     b.type_ = type;
     b.force_ = b.torque_ = Vec3<T>::zero();
