@@ -24,7 +24,7 @@ namespace detail {
 class ConstraintColouring {
 public:
     static constexpr int colours = 24;        ///< Box2D v3 uses 24; a box in a pile needs about 8
-    std::vector<std::uint32_t> order;         ///< row indices, colour by colour, row order inside
+    std::vector<std::uint32_t> order;         ///< row indices, colour by colour, by lower moving body inside
     std::vector<std::uint32_t> colour_begin;  ///< colours + 1 offsets into order
     std::vector<std::uint32_t> overflow;      ///< rows no colour could take, in row order
 

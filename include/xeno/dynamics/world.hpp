@@ -557,7 +557,8 @@ private:
     std::vector<std::uint32_t> solver_index_;               ///< per slot: index into solver_bodies_ (0: none)
     std::vector<std::uint32_t> solver_slot_;                ///< per solver body: its slot
     std::vector<std::uint32_t> solver_order_;               ///< prepare: the slots of the solver bodies, in order
-    std::vector<std::pair<T, std::uint32_t>> solver_keys_;  ///< prepare, several workers: (place on the axis, slot)
+    std::vector<std::pair<T, std::uint32_t>> solver_keys_;  ///< prepare, several workers: (place on the axis, slot), sorted
+                                                            ///< as pairs so comparisons do not read the bodies' deque
     std::vector<detail::BodyIntegration<T>> integration_;   ///< per solver body: the step's constants
     std::vector<detail::ContactConstraint<T>> constraints_;
     detail::WideContactRows<T> wide_rows_;  ///< constraints_ coloured and packed in SIMD lanes
