@@ -13,13 +13,15 @@
 //     --quick: fewer steps and no 5,050-box pyramid
 //     --workers N: instead, each scene on 1 and on N workers (the world's ThreadPool) in this
 //                  process, ms per step and per stage with the speed-up, and whether both ended
-//                  in the same bits (docs/parallel.md)
+//                  in the same bits, between two measures of how far apart the cores are
+//                  (one atomic's round trip between two threads; docs/parallel.md)
 #include "bullet_peer.hpp"
 #include "scenes/random.hpp"
 #include "scenes/stacks.hpp"
 
 #include <xeno/dynamics/world.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -29,6 +31,7 @@
 #include <new>
 #include <string>
 #include <thread>
+#include <vector>
 #include <utility>
 
 // The counting allocator: every operator new/delete of this program goes through it.
@@ -320,12 +323,41 @@ void workers_row(const char* scene, const Build& build, int steps, unsigned work
     std::printf("\n");
 }
 
+/// ns for one atomic to go from this thread to another and back (the median of 5 runs of
+/// 100,000): what a cache line written by the other core costs to read. On a virtual machine it
+/// moves with where the hypervisor places the two cores, and the speed-up of the rows below with
+/// it (docs/parallel.md, "Each worker keeps to its bodies").
+double core_round_trip_ns() {
+    constexpr int trips = 100000;
+    std::vector<double> runs;
+    for (int run = 0; run < 5; ++run) {
+        alignas(64) std::atomic<int> flag{0};
+        std::thread echo([&] {
+            for (int i = 0; i < trips; ++i) {
+                while (flag.load(std::memory_order_acquire) != 2 * i + 1) {
+                }
+                flag.store(2 * i + 2, std::memory_order_release);
+            }
+        });
+        const auto start = std::chrono::steady_clock::now();
+        for (int i = 0; i < trips; ++i) {
+            flag.store(2 * i + 1, std::memory_order_release);
+            while (flag.load(std::memory_order_acquire) != 2 * i + 2) {
+            }
+        }
+        runs.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() / trips);
+        echo.join();
+    }
+    std::sort(runs.begin(), runs.end());
+    return runs[runs.size() / 2];
+}
+
 void workers_table(unsigned workers, bool quick) {
     const int steps = quick ? 60 : 300;
     std::printf(
         "World::step on 1 and %u workers (World::set_workers), 60 Hz, %d steps each, default settings, no sleeping;\n"
-        "this machine has %u hardware threads\n",
-        workers, steps, std::thread::hardware_concurrency());
+        "this machine has %u hardware threads; a round trip of one atomic between two threads takes %.0f ns\n",
+        workers, steps, std::thread::hardware_concurrency(), core_round_trip_ns());
     for (int base : {20, 40, 100}) {
         if (quick && base == 100) break;
         const std::string name = "pyramid-" + std::to_string(base);
@@ -343,6 +375,7 @@ void workers_table(unsigned workers, bool quick) {
             workers_row<double>(
                 name.c_str(), [&](World<double>& w) { drop_boxes(w, n); }, steps, workers);
     }
+    std::printf("after the rows, a round trip between two threads takes %.0f ns\n", core_round_trip_ns());
 }
 
 }  // namespace
