@@ -4,8 +4,8 @@
 #      formatted by .clang-format, no line over 130 characters (scripts/check_format.sh)
 #   1. g++ Release at -O2 (the level of the browser build, whose speed line step 5 compares with
 #      the native one; CMake's Release default is -O3), warnings as errors: tests (unit + slow;
-#      the unit-test files at -O1, tests/CMakeLists.txt), examples built, benchmarks built at -O0
-#      (to prove they compile; scripts/main.sh builds them for timing)
+#      the unit-test files at -O1, tests/CMakeLists.txt), examples built (those no test runs at
+#      -O0), benchmarks built at -O0 (to prove they compile; scripts/main.sh builds both for use)
 #   2. clang++ with -fsanitize=address,undefined -fno-sanitize-recover=all (-O1, line tables; the
 #      unit-test files at -O0, and run file by file: tests/CMakeLists.txt says why),
 #      warnings as errors: every header alone, the unit and slow tests, and the libFuzzer targets
@@ -50,7 +50,7 @@ configure_and_test() {  # name, extra cmake args...
 # compilers read the same standard library, and the tests include every header under both.
 # The benchmarks are built to prove they compile and link, not run: at -O0 (bench/CMakeLists.txt).
 gcc_flags=(-DCMAKE_CXX_COMPILER=g++ "-DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG" -DXENO_BUILD_HEADER_CHECK=OFF
-           -DXENO_BENCH_OPTIMIZATION=-O0)
+           -DXENO_BENCH_OPTIMIZATION=-O0 -DXENO_EXAMPLE_OPTIMIZATION=-O0)
 if [[ "${XENO_TEST_QUICK:-0}" == 1 ]]; then
   step "g++ Release (quick: no slow tests)"
   ctest_args="-LE slow" configure_and_test gcc "${gcc_flags[@]}"

@@ -28,7 +28,9 @@
 #include "face_clip.hpp"
 #include "mpr.hpp"
 #include "round_pairs.hpp"
+#include "shape_ref.hpp"
 
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -147,6 +149,21 @@ Penetration<typename A::scalar_type> collide_pair(const A& a, const Transform<ty
     return out;
 }
 
+/// generate_contacts() for one Minkowski difference (inflated by the margin), A's frame.
+template <class A, class B>
+ContactManifold<typename A::scalar_type> manifold_of(const MinkowskiDifference<A, B>& md,
+                                                     typename A::scalar_type exact_depth_above) {
+    using T = typename A::scalar_type;
+    if constexpr (is_round_pair<A, B>) {
+        return round_manifold(md);  // their own manifolds
+    } else {
+        Vec3<T> n, pa, pb;
+        T h;
+        if (!refined_contact(md, n, h, pa, pb, exact_depth_above)) return ContactManifold<T>{};
+        return build_manifold(md, n, pa, pb, h, md.margin());
+    }
+}
+
 /// The same contact seen from the other body.
 template <class T>
 Penetration<T> flipped(Penetration<T> p) {
@@ -162,27 +179,31 @@ template <class T>
 bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
     detail::require_finite_pose(pose_a, "intersect", "pose_a");
     detail::require_finite_pose(pose_b, "intersect", "pose_b");
-    return std::visit(
-        [&](const auto& sa, const auto& sb) {
+    const std::optional<bool> closed_form = std::visit(
+        [&](const auto& sa, const auto& sb) -> std::optional<bool> {
             using SA = std::decay_t<decltype(sa)>;
             using SB = std::decay_t<decltype(sb)>;
             // Closed-form pairs: cheaper than MPR, and always the same answer as collide().hit.
             if constexpr (detail::is_round_pair<SA, SB>) {
                 return detail::round_intersect(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b));
-            } else if constexpr (std::is_same_v<SA, Box<T>> && std::is_same_v<SB, Box<T>>) {
+            } else if constexpr (!detail::answered_by_mpr<SA, SB>) {  // two boxes
                 const MinkowskiDifference<SA, SB> md(sa, pose_a, sb, pose_b);
                 Vec3<T> n, pa, pb;
                 T h;
                 return detail::refined_contact(md, n, h, pa, pb) && h > T(0);
             } else {
-                // In collide()'s order, so the two agree wherever MPR decides the hit (the poses
-                // are checked above: MPR directly, not mpr_intersect, which checks them again).
-                if (detail::mpr_order_swapped(a, pose_a, b, pose_b))
-                    return detail::mpr(MinkowskiDifference<SB, SA>(sb, pose_b, sa, pose_a), true).hit;
-                return detail::mpr(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b), true).hit;
+                return std::nullopt;
             }
         },
         a, b);
+    if (closed_form) return *closed_form;
+    // MPR pairs, compiled once for every kind (shape_ref.hpp), in collide()'s order, so the two
+    // agree wherever MPR decides the hit (the poses are checked above: MPR directly, not
+    // mpr_intersect, which checks them again).
+    using AnyPair = MinkowskiDifference<detail::ShapeRef<T>, detail::ShapeRef<T>>;
+    const detail::ShapeRef<T> any_a(a), any_b(b);
+    if (detail::mpr_order_swapped(a, pose_a, b, pose_b)) return detail::mpr(AnyPair(any_b, pose_b, any_a, pose_a), true).hit;
+    return detail::mpr(AnyPair(any_a, pose_a, any_b, pose_b), true).hit;
 }
 
 /// Penetration of two shapes with the refined normal: hit, unit normal A → B (world), the overlap
@@ -193,17 +214,19 @@ template <class T>
 Penetration<T> collide(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
     detail::require_finite_pose(pose_a, "collide", "pose_a");
     detail::require_finite_pose(pose_b, "collide", "pose_b");
-    return std::visit(
-        [&](const auto& sa, const auto& sb) {
+    const std::optional<Penetration<T>> closed_form = std::visit(
+        [&](const auto& sa, const auto& sb) -> std::optional<Penetration<T>> {
             using SA = std::decay_t<decltype(sa)>;
             using SB = std::decay_t<decltype(sb)>;
-            if constexpr (detail::answered_by_mpr<SA, SB>) {
-                if (detail::mpr_order_swapped(a, pose_a, b, pose_b))  // only MPR pairs depend on the order
-                    return detail::flipped(detail::collide_pair(sb, pose_b, sa, pose_a));
-            }
-            return detail::collide_pair(sa, pose_a, sb, pose_b);
+            if constexpr (detail::answered_by_mpr<SA, SB>) return std::nullopt;
+            else return detail::collide_pair(sa, pose_a, sb, pose_b);
         },
         a, b);
+    if (closed_form) return *closed_form;
+    const detail::ShapeRef<T> any_a(a), any_b(b);
+    if (detail::mpr_order_swapped(a, pose_a, b, pose_b))  // only MPR pairs depend on the order
+        return detail::flipped(detail::collide_pair(any_b, pose_b, any_a, pose_a));
+    return detail::collide_pair(any_a, pose_a, any_b, pose_b);
 }
 
 /// The contact manifold the world uses: up to four points with one normal (A → B), including
@@ -215,18 +238,18 @@ Penetration<T> collide(const Shape<T>& a, const Transform<T>& pose_a, const Shap
 template <class T>
 ContactManifold<T> generate_contacts(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b,
                                      T margin, T exact_depth_above = -ScalarTraits<T>::infinity) {
-    return std::visit(
-        [&](const auto& sa, const auto& sb) {
+    const std::optional<ContactManifold<T>> closed_form = std::visit(
+        [&](const auto& sa, const auto& sb) -> std::optional<ContactManifold<T>> {
             using SA = std::decay_t<decltype(sa)>;
             using SB = std::decay_t<decltype(sb)>;
-            const MinkowskiDifference<SA, SB> md(sa, pose_a, sb, pose_b, margin);
-            if constexpr (detail::is_round_pair<SA, SB>) return detail::round_manifold(md);  // their own manifolds
-            Vec3<T> n, pa, pb;
-            T h;
-            if (!detail::refined_contact(md, n, h, pa, pb, exact_depth_above)) return ContactManifold<T>{};
-            return build_manifold(md, n, pa, pb, h, margin);
+            if constexpr (detail::answered_by_mpr<SA, SB>) return std::nullopt;
+            else return detail::manifold_of(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b, margin), exact_depth_above);
         },
         a, b);
+    if (closed_form) return *closed_form;
+    const detail::ShapeRef<T> any_a(a), any_b(b);
+    return detail::manifold_of(
+        MinkowskiDifference<detail::ShapeRef<T>, detail::ShapeRef<T>>(any_a, pose_a, any_b, pose_b, margin), exact_depth_above);
 }
 
 #ifdef XENO_COMPILED_LIB

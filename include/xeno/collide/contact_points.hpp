@@ -96,6 +96,12 @@ SupportFace<typename S::scalar_type> support_feature(const S& shape, const Vec3<
     return out;
 }
 
+/// The same for a shape of any kind: its own kind's rule.
+template <class T>
+SupportFace<T> support_feature(const ShapeRef<T>& shape, const Vec3<T>& d, T tau) {
+    return shape.visit([&](const auto& concrete) { return support_feature(concrete, d, tau); });
+}
+
 /// Moves the points of `poly` (any count) to the part inside the prism over the convex polygon
 /// `ref` (3+ vertices) along n.
 template <class T>

@@ -114,8 +114,9 @@ bool separated_from_triangle(const MeshTriangle<typename S::scalar_type>& t, con
     return false;
 }
 
-/// The manifold of one triangle and the convex, mesh frame (A = the triangle), after the edge
-/// correction; count 0 when they are apart or the contact faces the triangle's back.
+/// The manifold of one triangle and the convex (a Box, or any kind as a ShapeRef), mesh frame
+/// (A = the triangle), after the edge correction; count 0 when they are apart or the contact faces
+/// the triangle's back.
 template <class S>
 ContactManifold<typename S::scalar_type> triangle_manifold(const MeshTriangle<typename S::scalar_type>& t, const S& convex,
                                                            const Transform<typename S::scalar_type>& pose,
@@ -130,11 +131,15 @@ ContactManifold<typename S::scalar_type> triangle_manifold(const MeshTriangle<ty
     // sphere is otherwise braked): their points on the surfaces (collide()'s contract). The
     // others' manifolds come from face clipping; MPR's cheaper points are only its fallback.
     // A box, the most common body, takes the closed-form separating-axis test (box_triangle.hpp).
-    constexpr bool round = std::is_same_v<S, Sphere<T>> || std::is_same_v<S, Capsule<T>>;
     if constexpr (std::is_same_v<S, Box<T>>) {
         if (!box_triangle_axis(md, n, h, pa, pb)) return {};
-    } else if (!refined_contact<round>(md, n, h, pa, pb, exact_above)) {
-        return {};
+    } else {
+        bool round = IsRound<S>::value;
+        if constexpr (is_shape_ref<S>)
+            round = convex.visit([](const auto& shape) { return IsRound<std::decay_t<decltype(shape)>>::value; });
+        const bool hit =
+            round ? refined_contact<true>(md, n, h, pa, pb, exact_above) : refined_contact<false>(md, n, h, pa, pb, exact_above);
+        if (!hit) return {};
     }
     if (dot(n, t.normal) < T(0)) return {};  // out through the back
     const bool ghost = dot(n, t.normal) < T(1) - T(1e-6) && is_ghost_normal(t, n, T(1e-3) * tri.bounding_radius());
@@ -219,33 +224,35 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
     constexpr T same_normal = T(0.999);  // cos 2.6°
     const T size = bounding_radius(convex);
     std::vector<detail::NormalGroup<T>> groups;
-    std::visit(
-        [&](const auto& shape) {
-            const Mat3<T> r = to_matrix(pose.orientation);
-            const auto reaches = [&](const MeshTriangle<T>& t) {
-                return !detail::separated_from_triangle(t, shape, pose, r, margin);
-            };
-            for_each_triangle(
-                m, box,
-                [&](std::uint32_t k, const MeshTriangle<T>& t) {
-                    const ContactManifold<T> c = detail::triangle_manifold(t, shape, pose, centre, margin, exact_depth_above);
-                    if (c.count == 0) return;
-                    detail::NormalGroup<T>* group = nullptr;
-                    for (detail::NormalGroup<T>& g : groups)
-                        if (dot(g.normal, c.normal) >= same_normal) {
-                            group = &g;
-                            break;
-                        }
-                    if (!group) {
-                        groups.emplace_back();
-                        group = &groups.back();
-                        group->normal = c.normal;
+    // A box takes its closed-form triangle test; the other kinds share one compiled copy of the
+    // triangle pair (shape_ref.hpp).
+    const auto collide_convex = [&](const auto& shape) {
+        const Mat3<T> r = to_matrix(pose.orientation);
+        const auto reaches = [&](const MeshTriangle<T>& t) {
+            return !detail::separated_from_triangle(t, shape, pose, r, margin);
+        };
+        for_each_triangle(
+            m, box,
+            [&](std::uint32_t k, const MeshTriangle<T>& t) {
+                const ContactManifold<T> c = detail::triangle_manifold(t, shape, pose, centre, margin, exact_depth_above);
+                if (c.count == 0) return;
+                detail::NormalGroup<T>* group = nullptr;
+                for (detail::NormalGroup<T>& g : groups)
+                    if (dot(g.normal, c.normal) >= same_normal) {
+                        group = &g;
+                        break;
                     }
-                    group->add(c, k, size);
-                },
-                reaches);
-        },
-        convex);
+                if (!group) {
+                    groups.emplace_back();
+                    group = &groups.back();
+                    group->normal = c.normal;
+                }
+                group->add(c, k, size);
+            },
+            reaches);
+    };
+    if (const Box<T>* cuboid = std::get_if<Box<T>>(&convex)) collide_convex(*cuboid);
+    else collide_convex(detail::ShapeRef<T>(convex));
     for (detail::NormalGroup<T>& g : groups) {
         g.reduce();
         MeshContact<T> c;
@@ -268,16 +275,12 @@ bool intersect_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const 
     const Vec3<T> centre = pose.apply(interior_point(convex));
     const Mat3<T> r = to_matrix(pose.orientation);
     bool hit = false;
-    std::visit(
-        [&](const auto& shape) {
-            using S = std::decay_t<decltype(shape)>;
-            for_each_triangle(m, world_bounds(convex, pose), [&](std::uint32_t, const MeshTriangle<T>& t) {
-                if (hit || detail::separated_from_triangle(t, shape, pose, r, T(0))) return;
-                const Triangle<T> tri(t, detail::closest_point_on_triangle(centre, t.v[0], t.v[1], t.v[2]));
-                hit = detail::mpr(MinkowskiDifference<Triangle<T>, S>(tri, Transform<T>{}, shape, pose), true).hit;
-            });
-        },
-        convex);
+    const detail::ShapeRef<T> shape(convex);  // every kind through one compiled copy (shape_ref.hpp)
+    for_each_triangle(m, world_bounds(convex, pose), [&](std::uint32_t, const MeshTriangle<T>& t) {
+        if (hit || detail::separated_from_triangle(t, shape, pose, r, T(0))) return;
+        const Triangle<T> tri(t, detail::closest_point_on_triangle(centre, t.v[0], t.v[1], t.v[2]));
+        hit = detail::mpr(MinkowskiDifference<Triangle<T>, detail::ShapeRef<T>>(tri, Transform<T>{}, shape, pose), true).hit;
+    });
     return hit;
 }
 
@@ -298,30 +301,27 @@ std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>&
     const Vec3<T> origin = pose_a.position;
     const Vec3<T> centre_a = pose_a.apply(interior_point(a));
     std::optional<ShapeCastHit<T>> best;
-    std::visit(
-        [&](const auto& shape) {
-            for_each_triangle(m, swept, [&](std::uint32_t, const MeshTriangle<T>& t) {
-                MeshTriangle<T> placed = t;  // in the world, so the cast's frame is the convex pair's
-                for (Vec3<T>& v : placed.v) v = pose_mesh.apply(v);
-                placed.normal = pose_mesh.apply_direction(t.normal);
-                const Triangle<T> tri(placed, detail::closest_point_on_triangle(centre_a, placed.v[0], placed.v[1], placed.v[2]));
-                const auto support_c = [&](const Vec3<T>& v) {
-                    detail::CastVertex<T> p;
-                    p.a = rotate(pose_a.orientation, shape.support(inverse_rotate(pose_a.orientation, -v)));
-                    p.b = tri.support(v) - origin;
-                    p.c = p.b - p.a;
-                    return p;
-                };
-                const T size =
-                    shape.bounding_radius() + tri.bounding_radius() + length(translation) + length(tri.interior_point() - origin);
-                const std::optional<ShapeCastHit<T>> hit = detail::gjk_cast(
-                    support_c, (tri.interior_point() - origin) - (centre_a - origin), size, pose_a, translation,
-                    [&](const Transform<T>& at) { return detail::collide_pair(shape, at, tri, Transform<T>{}); });
-                if (!hit || dot(hit->normal, placed.normal) > T(0)) return;  // missed, or met from behind
-                if (!best || hit->fraction < best->fraction) best = hit;
-            });
-        },
-        a);
+    const detail::ShapeRef<T> shape(a);  // every kind through one compiled copy (shape_ref.hpp)
+    for_each_triangle(m, swept, [&](std::uint32_t, const MeshTriangle<T>& t) {
+        MeshTriangle<T> placed = t;  // in the world, so the cast's frame is the convex pair's
+        for (Vec3<T>& v : placed.v) v = pose_mesh.apply(v);
+        placed.normal = pose_mesh.apply_direction(t.normal);
+        const Triangle<T> tri(placed, detail::closest_point_on_triangle(centre_a, placed.v[0], placed.v[1], placed.v[2]));
+        const auto support_c = [&](const Vec3<T>& v) {
+            detail::CastVertex<T> p;
+            p.a = rotate(pose_a.orientation, shape.support(inverse_rotate(pose_a.orientation, -v)));
+            p.b = tri.support(v) - origin;
+            p.c = p.b - p.a;
+            return p;
+        };
+        const T size =
+            shape.bounding_radius() + tri.bounding_radius() + length(translation) + length(tri.interior_point() - origin);
+        const std::optional<ShapeCastHit<T>> hit =
+            detail::gjk_cast(support_c, (tri.interior_point() - origin) - (centre_a - origin), size, pose_a, translation,
+                             [&](const Transform<T>& at) { return detail::collide_pair(shape, at, tri, Transform<T>{}); });
+        if (!hit || dot(hit->normal, placed.normal) > T(0)) return;  // missed, or met from behind
+        if (!best || hit->fraction < best->fraction) best = hit;
+    });
     return best;
 }
 

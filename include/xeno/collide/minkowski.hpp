@@ -12,6 +12,7 @@
 
 #include "../math/transform.hpp"
 #include "../shape/convex_polyhedron.hpp"
+#include "shape_ref.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -102,7 +103,9 @@ private:
     // in closed form.
     template <class S>
     static Vec3<T> support_of(const S& shape, const Vec3<T>& d, std::uint32_t& hint) {
-        if constexpr (std::is_same_v<S, ConvexPolyhedron<T>>) {
+        if constexpr (detail::is_shape_ref<S>) {
+            return shape.visit([&](const auto& concrete) { return support_of(concrete, d, hint); });
+        } else if constexpr (std::is_same_v<S, ConvexPolyhedron<T>>) {
             hint = shape.support_index_hill_climb(d, hint == kNoHint ? shape.start_vertex(d) : hint);
             return shape.vertices()[hint];
         } else {
@@ -113,10 +116,14 @@ private:
 
     template <class S>
     static std::optional<Vec3<T>> flat_normal_of(const S& shape, const Vec3<T>& d, std::uint32_t hint) {
-        if constexpr (std::is_same_v<S, ConvexPolyhedron<T>>) {
-            if (hint != kNoHint) return shape.faces()[shape.support_face_index(d, hint)].normal;
+        if constexpr (detail::is_shape_ref<S>) {
+            return shape.visit([&](const auto& concrete) { return flat_normal_of(concrete, d, hint); });
+        } else {
+            if constexpr (std::is_same_v<S, ConvexPolyhedron<T>>) {
+                if (hint != kNoHint) return shape.faces()[shape.support_face_index(d, hint)].normal;
+            }
+            return shape.flat_normal(d);
         }
-        return shape.flat_normal(d);
     }
 
     static Vec3<T> clamp_into(const Vec3<T>& p, const Vec3<T>& centre, const Vec3<T>& half) {

@@ -2,8 +2,9 @@
 // SPDX-License-Identifier: MIT
 //
 // Shape<T>: one type that holds any convex shape (a std::variant), so worlds and tools can store
-// mixed shapes. Pairs are dispatched statically: one std::visit over two shapes selects a
-// template instantiation whose support calls inline (docs/style.md, "Static dispatch").
+// mixed shapes. Pairs with a closed form are dispatched by one std::visit over both shapes; the
+// pairs MPR answers see both through collide/shape_ref.hpp, one compiled copy whose support call
+// switches on the kind (docs/style.md, "Static dispatch").
 #pragma once
 
 #include "box.hpp"
