@@ -122,8 +122,9 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 3;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
-                                                      // the last substep, prismatic and swing-twist joints
+constexpr std::uint32_t kSnapshotVersion = 4;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
+                                                      // the last substep, prismatic and swing-twist joints; 4: the
+                                                      // pose each contact's manifold was made at
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {
@@ -547,6 +548,10 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
         }
         ok = ok && linear_ok(length(m.friction_impulse), c.a.index, c.b.index) &&
              angular_ok(m.twist_impulse, c.a.index, c.b.index);
+        // The pose the manifold was made at (World::reuse_contact): a wrong one only decides
+        // whether the next step re-measures the points or collides the shapes again.
+        ok = ok && is_finite(c.made_offset) && detail::unit_quat(c.made_turn) && is_finite(c.made_normal) &&
+             (m.count == 0 || detail::unit_vector(c.made_normal));
         if (!ok) detail::report_corrupt("a contact's normal, points, impulses or material are out of range; contact", k);
     }
     // Joints: types, bools, living distinct bodies, finite frames; free joints = dead joints.

@@ -65,6 +65,12 @@ struct Contact {
     bool touching = false;        ///< some point overlaps, or pushed during the last step
     bool was_touching = false;    ///< touching at the end of the previous step (events)
     bool sensor = false;          ///< one body is a sensor: reported, never solved
+    // Where the narrow phase last made this manifold: while no contact point has moved more than a
+    // tenth of linear_slop relative to A since, the next step re-measures the points instead of
+    // colliding the shapes again (docs/collision.md, "Reusing a manifold").
+    Vec3<T> made_offset{};                    ///< m, B's centre of mass in A's body frame
+    Quat<T> made_turn = Quat<T>::identity();  ///< B's orientation relative to A's
+    Vec3<T> made_normal{};                    ///< unit, the normal in A's body frame
 };
 
 enum class ContactEventKind { began, persisted, ended };
@@ -132,11 +138,12 @@ struct WorldShapeCastHit {
 
 /// Counters of the last step, for benchmarks and tests.
 struct StepStats {
-    std::size_t broad_pairs = 0;     ///< pairs whose boxes overlapped
-    std::size_t apart_pairs = 0;     ///< of those, convex pairs the early-out found apart (no narrow phase)
-    std::size_t dropped_pairs = 0;   ///< of those, left out: more than settings.max_contact_pairs (a crowd)
-    std::size_t contacts = 0;        ///< manifolds with at least one point
-    std::size_t contact_points = 0;  ///< rows solved
+    std::size_t broad_pairs = 0;      ///< pairs whose boxes overlapped
+    std::size_t apart_pairs = 0;      ///< of those, convex pairs the early-out found apart (no narrow phase)
+    std::size_t reused_contacts = 0;  ///< manifolds re-measured instead of made again (the pair barely moved)
+    std::size_t dropped_pairs = 0;    ///< of those, left out: more than settings.max_contact_pairs (a crowd)
+    std::size_t contacts = 0;         ///< manifolds with at least one point
+    std::size_t contact_points = 0;   ///< rows solved
     std::size_t awake_bodies = 0;
     std::size_t colours = 0;            ///< colours the solved manifolds took (docs/solver.md, "Colours")
     std::size_t overflow_contacts = 0;  ///< manifolds no colour could take, solved one at a time
@@ -446,8 +453,11 @@ private:
                             const BodyDef<T>& def, std::shared_ptr<const MeshShape<T>> mesh = nullptr);
     /// The contacts of one pair into `next`, matched to last step's contacts_[old_begin, old_end).
     void collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, std::vector<Contact<T>>& next);
-    bool collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
-                       Contact<T>& out) const;
+    /// What collide_parts did: the parts are apart, or their manifold was made or re-measured.
+    enum class PartsContact : std::uint8_t { apart, made, reused };
+    PartsContact collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
+                               Contact<T>& out) const;
+    bool reuse_contact(const ProxyPair& pair, T margin, const Contact<T>& had, Contact<T>& out) const;
     /// A mesh pair's manifolds (mesh_collide.hpp), each with the convex side's part.
     struct MeshManifolds {
         std::vector<MeshContact<T>> contacts;
@@ -586,6 +596,7 @@ private:
     std::vector<std::uint32_t> bouncing_rows_;       ///< the rows with a restitution, in row order (prepare)
     std::vector<std::uint32_t> collide_jobs_;        ///< several workers: the pairs of kind collided, in pair order
     std::vector<Contact<T>> job_contacts_;           ///< several workers: the contact of each of collide_jobs_
+    std::vector<PartsContact> job_results_;          ///< several workers: what collide_parts did for each of collide_jobs_
     std::vector<std::uint32_t> contact_start_;       ///< per slot: the end of its run in contact_list_ (index_contacts)
     std::vector<std::uint32_t> contact_list_;        ///< contact indices grouped by body slot
     std::vector<std::uint32_t> island_parent_;       ///< union–find parents per slot (wake, sleep)
@@ -1064,6 +1075,7 @@ void World<T>::narrow_phase(T dt) {
         for (const std::uint32_t k : early_jobs_)
             if (pair_work_[k].kind == PairKind::collided) collide_jobs_.push_back(k);
     job_contacts_.resize(collide_jobs_.size());
+    job_results_.resize(collide_jobs_.size());
     parallel_for(tasks_.get(), static_cast<std::uint32_t>(collide_jobs_.size()), 16u,
                  [&](std::uint32_t begin, std::uint32_t end) {
                      for (std::uint32_t j = begin; j < end; ++j) {
@@ -1074,8 +1086,8 @@ void World<T>::narrow_phase(T dt) {
                                                      ? &contacts_[work.old_begin]
                                                      : nullptr;
                          job_contacts_[j].manifold.count = 0;
-                         collide_parts(pairs_[k], 0, 0, pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), had,
-                                       job_contacts_[j]);
+                         job_results_[j] = collide_parts(
+                             pairs_[k], 0, 0, pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), had, job_contacts_[j]);
                      }
                  });
     if (mesh_job_manifolds_.size() < mesh_jobs_.size()) mesh_job_manifolds_.resize(mesh_jobs_.size());
@@ -1110,6 +1122,7 @@ void World<T>::narrow_phase(T dt) {
             old = work.old_end;
         } else if (work.kind == PairKind::collided) {
             // Pass 2's contact took over last step's contact of parts (0, 0), if there was one.
+            if (job_results_[job] == PartsContact::reused) ++stats_.reused_contacts;
             const Contact<T>& fresh = job_contacts_[job++];
             const bool had = old < work.old_end && contacts_[old].child_a == 0 && contacts_[old].child_b == 0;
             if (had && fresh.manifold.count == 0) end_contact(contacts_[old]);
@@ -1189,7 +1202,9 @@ void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_beg
                 end_contact(contacts_[old++]);
             const bool had = old < old_end && contacts_[old].child_a == ca && contacts_[old].child_b == cb;
             Contact<T> c;
-            if (collide_parts(pair, ca, cb, margin, had ? &contacts_[old] : nullptr, c)) next.push_back(c);
+            const PartsContact result = collide_parts(pair, ca, cb, margin, had ? &contacts_[old] : nullptr, c);
+            if (result == PartsContact::reused) ++stats_.reused_contacts;
+            if (result != PartsContact::apart) next.push_back(c);
             else if (had) end_contact(contacts_[old]);  // apart: the contact ends
             if (had) ++old;
         }
@@ -1198,22 +1213,24 @@ void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_beg
 }
 
 /// The contact of parts ca and cb of a pair into `out`, its points matched to `had` (last step's
-/// contact of those parts, or nullptr); false when they are apart (out is left as it was).
+/// contact of those parts, or nullptr), or re-measured from `had` when the pair barely moved;
+/// apart when they are apart (out is left as it was).
 template <class T>
-bool World<T>::collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
-                             Contact<T>& out) const {
+typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin,
+                                                        const Contact<T>* had, Contact<T>& out) const {
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
     const Transform<T> pose_a = a.child_transform(ca), pose_b = b.child_transform(cb);
     if (a.compound_ || b.compound_) {  // parts whose boxes are apart need no narrow phase
         if (!overlaps(world_bounds(a.child_shape(ca), pose_a).expanded(margin), world_bounds(b.child_shape(cb), pose_b)))
-            return false;
+            return PartsContact::apart;
     }
+    if (had && reuse_contact(pair, margin, *had, out)) return PartsContact::reused;
     const ContactManifold<T> fresh =
         generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin, settings_.linear_slop);
-    if (fresh.count == 0) return false;
+    if (fresh.count == 0) return PartsContact::apart;
     make_contact(pair, ca, cb, margin, had, fresh, out);
-    return true;
+    return PartsContact::made;
 }
 
 template <class T>
@@ -1237,6 +1254,49 @@ void World<T>::make_contact(const ProxyPair& pair, std::uint32_t ca, std::uint32
     else c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
     c.touching = c.manifold.touching();
     for (int i = 0; i < c.manifold.count; ++i) c.manifold.points[static_cast<std::size_t>(i)].step_impulse = T(0);
+    c.made_offset = inverse_rotate(a.orientation(), b.position() - a.position());
+    c.made_turn = conjugate(a.orientation()) * b.orientation();
+    c.made_normal = a.transform().inverse_apply_direction(c.manifold.normal);
+}
+
+// A resting pair moves by round-off from step to step, and colliding it again gives the same
+// points: Jolt's body-pair cache, Bullet's persistent manifold refreshed from its anchors. B's
+// motion relative to A since the manifold was made moves any of its anchors by at most
+// |Δ offset| + θ · (the anchor's distance from B's centre), θ the relative rotation (2 |Δq| for
+// small angles); while that stays within a tenth of linear_slop, every point is re-measured from
+// its two anchors along the normal carried in A's frame. That is exact for a face of A under
+// anything of B (a box on a box: the anchors on B are its corners, the plane of A's face turns
+// with A) and off by the bound for a face of B or an edge pair.
+template <class T>
+bool World<T>::reuse_contact(const ProxyPair& pair, T margin, const Contact<T>& had, Contact<T>& out) const {
+    if (had.manifold.count == 0) return false;
+    const Body<T>& a = bodies_[pair.a];
+    const Body<T>& b = bodies_[pair.b];
+    Quat<T> turn = conjugate(a.orientation()) * b.orientation();
+    if (dot(turn, had.made_turn) < T(0)) turn = -turn;  // q and −q are one rotation
+    T lever = T(0);
+    for (int i = 0; i < had.manifold.count; ++i)
+        lever = std::max(lever, length_squared(had.manifold.points[static_cast<std::size_t>(i)].local_b));
+    const T moved = length(inverse_rotate(a.orientation(), b.position() - a.position()) - had.made_offset) +
+                    T(2) * length(turn - had.made_turn) * std::sqrt(lever);
+    if (!(moved <= T(0.1) * settings_.linear_slop)) return false;
+    const Transform<T> pose_a = a.transform(), pose_b = b.transform();
+    Contact<T> c = had;
+    c.was_touching = had.touching;
+    c.friction = combined_friction(a.material_, b.material_);
+    c.restitution = combined_restitution(a.material_, b.material_);
+    c.sensor = a.sensor_ || b.sensor_;
+    c.manifold.normal = pose_a.apply_direction(had.made_normal);
+    for (int i = 0; i < c.manifold.count; ++i) {
+        ContactPoint<T>& p = c.manifold.points[static_cast<std::size_t>(i)];
+        const T separation = dot(pose_b.apply(p.local_b) - pose_a.apply(p.local_a), c.manifold.normal);
+        if (separation > margin) return false;  // beyond the margin: colliding again drops it
+        p.depth = -separation;
+        p.step_impulse = T(0);
+    }
+    c.touching = c.manifold.touching();
+    out = c;
+    return true;
 }
 
 // Read-only, so pass 2 of the narrow phase runs it for several mesh pairs at once.

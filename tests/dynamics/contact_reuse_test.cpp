@@ -1,0 +1,134 @@
+// SPDX-FileCopyrightText: 2026 The xeno authors
+// SPDX-License-Identifier: MIT
+//
+// Reusing a manifold (World::reuse_contact, docs/collision.md "Reusing a manifold"): a pair that
+// barely moved since its manifold was made has its points re-measured instead of being collided
+// again. Checked against the narrow phase run afresh on the same poses (generate_contacts), on
+// default settings: a settled stack and every shape kind at rest on the ground agree with it, and a
+// box turned in place, by a rotation that moves no centre, is collided again.
+#include "scenes/all.hpp"
+
+#include <xeno/collide/collide.hpp>
+#include <xeno/dynamics/world.hpp>
+#include <xeno/shape/convex_hull.hpp>
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+using namespace xeno;
+
+namespace {
+
+template <class T>
+T deepest(const Manifold<T>& m) {
+    T d = -std::numeric_limits<T>::infinity();
+    for (int i = 0; i < m.count; ++i) d = std::max(d, m.points[static_cast<std::size_t>(i)].depth);
+    return d;
+}
+
+template <class T>
+T deepest(const ContactManifold<T>& m) {
+    T d = -std::numeric_limits<T>::infinity();
+    for (int i = 0; i < m.count; ++i) d = std::max(d, m.points[static_cast<std::size_t>(i)].depth);
+    return d;
+}
+
+/// Every convex contact of the world against generate_contacts on the bodies' poses now: the same
+/// normal (within 1e-3) and deepest depth (within `depth_tolerance`). Returns the contacts compared.
+template <class T>
+std::size_t compare_with_fresh(const World<T>& world, T depth_tolerance) {
+    std::size_t compared = 0;
+    const T margin = world.settings().speculative_distance;
+    for (const Contact<T>& c : world.contacts()) {
+        const Body<T>& a = world.body(c.a);
+        const Body<T>& b = world.body(c.b);
+        const ContactManifold<T> fresh =
+            generate_contacts(a.child_shape(c.child_a), a.child_transform(c.child_a), b.child_shape(c.child_b),
+                              b.child_transform(c.child_b), margin, world.settings().linear_slop);
+        CAPTURE(c.a.index);
+        CAPTURE(c.b.index);
+        REQUIRE(fresh.count > 0);
+        CHECK(dot(fresh.normal, c.manifold.normal) >= T(1) - T(1e-3));
+        CHECK(std::abs(deepest(fresh) - deepest(c.manifold)) <= depth_tolerance);
+        ++compared;
+    }
+    return compared;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a settled pyramid re-measures its contacts, and they are the narrow phase's", T, float, double) {
+    World<T> world;
+    WorldSettings<T> settings;  // the defaults, but awake: a sleeping pair keeps its contact untouched
+    settings.allow_sleeping = false;
+    world.set_settings(settings);
+    scenes::pyramid(world, 6);
+    for (int i = 0; i < 180; ++i) world.step(T(1) / T(60));
+    const StepStats& stats = world.last_step_stats();
+    MESSAGE(stats.reused_contacts << " of " << stats.contacts << " contacts re-measured");
+    CHECK(stats.reused_contacts * 10 >= stats.contacts * 9);  // at rest nearly every pair barely moves
+    CHECK(compare_with_fresh(world, T(1e-5)) == stats.contacts);
+}
+
+TEST_CASE_TEMPLATE("every shape kind at rest on the ground re-measures contacts that are the narrow phase's", T, float, double) {
+    World<T> world;
+    WorldSettings<T> settings;
+    settings.allow_sleeping = false;
+    world.set_settings(settings);
+    scenes::add_ground(world);
+    std::vector<Vec3<T>> rock;  // a hull of 24 points on an ellipsoid
+    scenes::Random rng(5);
+    for (int i = 0; i < 24; ++i) rock.push_back(hadamard(rng.direction<T>(), Vec3<T>{T(0.35), T(0.25), T(0.3)}));
+    const Shape<T> kinds[] = {make_convex_hull(rock).polyhedron, Sphere<T>(T(0.3)),       Capsule<T>(T(0.2), T(0.3)),
+                              Cylinder<T>(T(0.3), T(0.25)),      Cone<T>(T(0.3), T(0.7)), Box<T>(T(0.3), T(0.2), T(0.25))};
+    for (int i = 0; i < 6; ++i) {
+        BodyDef<T> def;
+        def.position = {T(2) * T(i), T(0.8), T(0)};
+        // The capsule lies on its side (two points); the others stand as made.
+        if (i == 2) def.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), T(1.5707963267948966));
+        world.create_body(kinds[i], def);
+    }
+    for (int i = 0; i < 180; ++i) world.step(T(1) / T(60));
+    const StepStats& stats = world.last_step_stats();
+    MESSAGE(stats.reused_contacts << " of " << stats.contacts << " contacts re-measured");
+    CHECK(stats.contacts == 6);
+    CHECK(stats.reused_contacts == 6);
+    CHECK(compare_with_fresh(world, T(1e-5)) == 6);
+}
+
+TEST_CASE_TEMPLATE("a box turned in place about the normal is collided again: its points follow the turn", T, float, double) {
+    World<T> world;
+    WorldSettings<T> settings;
+    settings.allow_sleeping = false;
+    world.set_settings(settings);
+    scenes::column(world, 1);
+    BodyId box;
+    world.for_each_body([&](BodyId id, const Body<T>& b) {
+        if (b.is_dynamic()) box = id;
+    });
+    for (int i = 0; i < 60; ++i) world.step(T(1) / T(60));
+    REQUIRE(world.last_step_stats().reused_contacts == 1);  // at rest on the ground
+    // 1° about the vertical through the box's centre: the centre stays put, the corners move 12 mm.
+    const Body<T>& b = world.body(box);
+    const Quat<T> turn = Quat<T>::from_axis_angle(Vec3<T>::unit_y(), T(3.14159265358979323846 / 180));
+    world.set_transform(box, b.position(), turn * b.orientation());
+    world.step(T(1) / T(60));
+    CHECK(world.last_step_stats().reused_contacts == 0);
+    // Each point's two anchors lie on one normal line: on the ground under a corner of the box.
+    REQUIRE(world.contacts().size() == 1);
+    const Contact<T>& c = world.contacts().front();
+    const Body<T>& ground = world.body(c.a);
+    const Body<T>& moved = world.body(c.b);
+    CHECK(c.manifold.count == 4);
+    for (int i = 0; i < c.manifold.count; ++i) {
+        const ContactPoint<T>& p = c.manifold.points[static_cast<std::size_t>(i)];
+        const Vec3<T> gap = moved.transform().apply(p.local_b) - ground.transform().apply(p.local_a);
+        const Vec3<T> slide = gap - c.manifold.normal * dot(gap, c.manifold.normal);
+        CHECK(length(slide) <= T(1e-4));
+    }
+    CHECK(compare_with_fresh(world, T(1e-5)) == 1);
+}
