@@ -11,10 +11,14 @@
 #include <xeno/collide/collide.hpp>
 #include <xeno/dynamics/world.hpp>
 #include <xeno/shape/convex_hull.hpp>
+#include <xeno/shape/height_field.hpp>
+#include <xeno/shape/triangle_mesh.hpp>
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -131,4 +135,70 @@ TEST_CASE_TEMPLATE("a box turned in place about the normal is collided again: it
         CHECK(length(slide) <= T(1e-4));
     }
     CHECK(compare_with_fresh(world, T(1e-5)) == 1);
+}
+
+namespace {
+
+/// A flat 8 × 8 m mesh of 128 triangles at y = 0, or a heightfield of the same plane.
+template <class T>
+BodyId add_flat_level(World<T>& world, bool heightfield) {
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    if (heightfield) return world.create_body(HeightField<T>(9, 9, std::vector<T>(81, T(0)), T(1)), d);
+    const int n = 8;
+    std::vector<Vec3<T>> v;
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) v.push_back({static_cast<T>(i - n / 2), T(0), static_cast<T>(j - n / 2)});
+    const auto at = [](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            tris.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+            tris.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+        }
+    return world.create_body(TriangleMesh<T>(v, tris), d);
+}
+
+/// How far below y = 0 the body's lowest point is, from its shape alone.
+template <class T>
+T sunk_below_level(const Body<T>& body) {
+    const Vec3<T> down_local = rotate(conjugate(body.orientation()), Vec3<T>{T(0), T(-1), T(0)});
+    return std::visit([&](const auto& s) { return dot(s.support(down_local), down_local); }, body.shape()) - body.position().y;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("bodies at rest on a mesh or a heightfield re-measure their contacts, each as deep as the body sinks", T,
+                   float, double) {
+    for (const bool heightfield : {false, true}) {
+        CAPTURE(heightfield);
+        World<T> world;
+        WorldSettings<T> settings;
+        settings.allow_sleeping = false;
+        world.set_settings(settings);
+        add_flat_level(world, heightfield);
+        const Shape<T> kinds[] = {Box<T>(T(0.5), T(0.3), T(0.4)), Sphere<T>(T(0.3)), Capsule<T>(T(0.2), T(0.5))};
+        std::vector<BodyId> bodies;
+        for (int i = 0; i < 3; ++i) {
+            BodyDef<T> def;
+            def.position = {T(2) * T(i - 1) + T(0.3), T(0.6), T(0.2)};  // off the triangles' vertices
+            def.orientation =
+                Quat<T>::from_axis_angle(i == 2 ? Vec3<T>::unit_z() : Vec3<T>::unit_y(), i == 2 ? T(1.5707963267948966) : T(0.3));
+            bodies.push_back(world.create_body(kinds[i], def));
+        }
+        for (int i = 0; i < 120; ++i) world.step(T(1) / T(60));
+        const StepStats& stats = world.last_step_stats();
+        MESSAGE(stats.reused_contacts << " of " << stats.contacts << " contacts re-measured");
+        CHECK(stats.contacts >= 3);
+        CHECK(stats.reused_contacts == stats.contacts);
+        for (const BodyId id : bodies) {
+            T deepest_point = -std::numeric_limits<T>::infinity();
+            for (const Contact<T>& c : world.contacts_of(id)) {
+                CHECK(c.manifold.normal.y >= T(1) - T(1e-5));  // the level is A (created first): up, from A to B
+                deepest_point = std::max(deepest_point, deepest(c.manifold));
+            }
+            CAPTURE(id.index);
+            CHECK(std::abs(deepest_point - sunk_below_level(world.body(id))) <= T(1e-5));
+        }
+    }
 }

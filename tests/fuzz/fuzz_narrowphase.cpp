@@ -83,9 +83,7 @@ void run(const PairSpec& spec) {
         };
         if (!rejects([&] { (void)collide(*a, pose_a, *b, pose_b); })) fuzz::fail("collide accepted a non-finite pose");
         if (!rejects([&] { (void)intersect(*a, pose_a, *b, pose_b); })) fuzz::fail("intersect accepted a non-finite pose");
-        if (!rejects([&] {
-                std::visit([&](const auto& sa, const auto& sb) { (void)mpr_penetration(sa, pose_a, sb, pose_b); }, *a, *b);
-            }))
+        if (!rejects([&] { (void)mpr_penetration(detail::ShapeRef<T>(*a), pose_a, detail::ShapeRef<T>(*b), pose_b); }))
             fuzz::fail("mpr_penetration accepted a non-finite pose");
         return;
     }
@@ -93,8 +91,9 @@ void run(const PairSpec& spec) {
     const bool hit = intersect(*a, pose_a, *b, pose_b);
     const Penetration<T> c = collide(*a, pose_a, *b, pose_b);
     check_hit(c, "collide");
-    const Penetration<T> m =
-        std::visit([&](const auto& sa, const auto& sb) { return mpr_penetration(sa, pose_a, sb, pose_b); }, *a, *b);
+    // Through ShapeRef, as the narrow phase runs it: one instantiation instead of one per pair of
+    // kinds (tests/collide/shape_ref_test.cpp compares the typed and ShapeRef paths).
+    const Penetration<T> m = mpr_penetration(detail::ShapeRef<T>(*a), pose_a, detail::ShapeRef<T>(*b), pose_b);
     check_hit(m, "mpr_penetration");
     if (m.iterations >= 3 * detail::kMprMaxIterations) fuzz::fail("MPR ran past its caps");
     const T margin = static_cast<T>(spec.margin);

@@ -476,8 +476,10 @@ private:
     T pair_margin(const Body<T>& a, const Body<T>& b, T dt) const {
         return settings_.speculative_distance + (travel_speed(a) + travel_speed(b)) * dt;
     }
-    /// dropped: not wanted; apart: rejected by the early-out (its contacts end); kept: both asleep.
-    enum class PairKind : std::uint8_t { dropped, apart, kept, collided, parts, mesh };
+    /// dropped: not wanted; apart: rejected by the early-out (its contacts end); kept: both asleep;
+    /// remeasured: a mesh pair that barely moved (every contact re-measured, reuse_contact).
+    enum class PairKind : std::uint8_t { dropped, apart, kept, collided, parts, mesh, remeasured };
+    bool mesh_pair_barely_moved(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end) const;
     void reject_apart_pairs(T dt);
     /// What the narrow phase does with a broad-phase pair, and its contacts of last step.
     struct PairWork {
@@ -1067,6 +1069,8 @@ void World<T>::narrow_phase(T dt) {
                     : a.mesh_ || b.mesh_         ? PairKind::mesh
                     : a.compound_ || b.compound_ ? PairKind::parts
                                                  : PairKind::collided;
+        if (work.kind == PairKind::mesh && mesh_pair_barely_moved(pair, pair_margin(a, b, dt), work.old_begin, work.old_end))
+            work.kind = PairKind::remeasured;
         if (work.kind == PairKind::collided) early_jobs_.push_back(static_cast<std::uint32_t>(k));
         if (parallel && work.kind == PairKind::mesh) mesh_jobs_.push_back(static_cast<std::uint32_t>(k));
     }
@@ -1120,6 +1124,13 @@ void World<T>::narrow_phase(T dt) {
             merge_mesh_pair(pairs_[k], margin, old, work.old_end, parallel ? mesh_job_manifolds_[mesh_job++] : mesh_manifolds_,
                             next);
             old = work.old_end;
+        } else if (work.kind == PairKind::remeasured) {
+            const T margin = pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt);
+            for (; old < work.old_end; ++old) {
+                next.emplace_back();
+                reuse_contact(pairs_[k], margin, contacts_[old], next.back());  // true: mesh_pair_barely_moved
+                ++stats_.reused_contacts;
+            }
         } else if (work.kind == PairKind::collided) {
             // Pass 2's contact took over last step's contact of parts (0, 0), if there was one.
             if (job_results_[job] == PartsContact::reused) ++stats_.reused_contacts;
@@ -1296,6 +1307,18 @@ bool World<T>::reuse_contact(const ProxyPair& pair, T margin, const Contact<T>& 
     }
     c.touching = c.manifold.touching();
     out = c;
+    return true;
+}
+
+// A convex body resting on level geometry: when every contact of the pair can be re-measured
+// (reuse_contact), the triangles near the body are the same as when they were made, and the
+// pair skips the mesh narrow phase. A pair without contacts is always collided.
+template <class T>
+bool World<T>::mesh_pair_barely_moved(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end) const {
+    if (old_begin == old_end) return false;
+    Contact<T> scratch;
+    for (std::size_t o = old_begin; o < old_end; ++o)
+        if (!reuse_contact(pair, margin, contacts_[o], scratch)) return false;
     return true;
 }
 
