@@ -452,12 +452,13 @@ private:
     BodyId create_body_impl(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
                             const BodyDef<T>& def, std::shared_ptr<const MeshShape<T>> mesh = nullptr);
     /// The contacts of one pair into `next`, matched to last step's contacts_[old_begin, old_end).
-    void collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, std::vector<Contact<T>>& next);
+    void collide_pair(const ProxyPair& pair, T margin, T dt, std::size_t old_begin, std::size_t old_end,
+                      std::vector<Contact<T>>& next);
     /// What collide_parts did: the parts are apart, or their manifold was made or re-measured.
     enum class PartsContact : std::uint8_t { apart, made, reused };
-    PartsContact collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
+    PartsContact collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, T dt, const Contact<T>* had,
                                Contact<T>& out) const;
-    bool reuse_contact(const ProxyPair& pair, T margin, const Contact<T>& had, Contact<T>& out) const;
+    bool reuse_contact(const ProxyPair& pair, T margin, T dt, const Contact<T>& had, Contact<T>& out) const;
     /// A mesh pair's manifolds (mesh_collide.hpp), each with the convex side's part.
     struct MeshManifolds {
         std::vector<MeshContact<T>> contacts;
@@ -479,7 +480,7 @@ private:
     /// dropped: not wanted; apart: rejected by the early-out (its contacts end); kept: both asleep;
     /// remeasured: a mesh pair that barely moved (every contact re-measured, reuse_contact).
     enum class PairKind : std::uint8_t { dropped, apart, kept, collided, parts, mesh, remeasured };
-    bool mesh_pair_barely_moved(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end) const;
+    bool mesh_pair_barely_moved(const ProxyPair& pair, T margin, T dt, std::size_t old_begin, std::size_t old_end) const;
     void reject_apart_pairs(T dt);
     /// What the narrow phase does with a broad-phase pair, and its contacts of last step.
     struct PairWork {
@@ -1069,7 +1070,7 @@ void World<T>::narrow_phase(T dt) {
                     : a.mesh_ || b.mesh_         ? PairKind::mesh
                     : a.compound_ || b.compound_ ? PairKind::parts
                                                  : PairKind::collided;
-        if (work.kind == PairKind::mesh && mesh_pair_barely_moved(pair, pair_margin(a, b, dt), work.old_begin, work.old_end))
+        if (work.kind == PairKind::mesh && mesh_pair_barely_moved(pair, pair_margin(a, b, dt), dt, work.old_begin, work.old_end))
             work.kind = PairKind::remeasured;
         if (work.kind == PairKind::collided) early_jobs_.push_back(static_cast<std::uint32_t>(k));
         if (parallel && work.kind == PairKind::mesh) mesh_jobs_.push_back(static_cast<std::uint32_t>(k));
@@ -1080,20 +1081,20 @@ void World<T>::narrow_phase(T dt) {
             if (pair_work_[k].kind == PairKind::collided) collide_jobs_.push_back(k);
     job_contacts_.resize(collide_jobs_.size());
     job_results_.resize(collide_jobs_.size());
-    parallel_for(tasks_.get(), static_cast<std::uint32_t>(collide_jobs_.size()), 16u,
-                 [&](std::uint32_t begin, std::uint32_t end) {
-                     for (std::uint32_t j = begin; j < end; ++j) {
-                         const std::uint32_t k = collide_jobs_[j];
-                         const PairWork& work = pair_work_[k];
-                         const Contact<T>* had = work.old_begin < work.old_end && contacts_[work.old_begin].child_a == 0 &&
-                                                         contacts_[work.old_begin].child_b == 0
-                                                     ? &contacts_[work.old_begin]
-                                                     : nullptr;
-                         job_contacts_[j].manifold.count = 0;
-                         job_results_[j] = collide_parts(
-                             pairs_[k], 0, 0, pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), had, job_contacts_[j]);
-                     }
-                 });
+    parallel_for(
+        tasks_.get(), static_cast<std::uint32_t>(collide_jobs_.size()), 16u, [&](std::uint32_t begin, std::uint32_t end) {
+            for (std::uint32_t j = begin; j < end; ++j) {
+                const std::uint32_t k = collide_jobs_[j];
+                const PairWork& work = pair_work_[k];
+                const Contact<T>* had = work.old_begin < work.old_end && contacts_[work.old_begin].child_a == 0 &&
+                                                contacts_[work.old_begin].child_b == 0
+                                            ? &contacts_[work.old_begin]
+                                            : nullptr;
+                job_contacts_[j].manifold.count = 0;
+                job_results_[j] = collide_parts(pairs_[k], 0, 0, pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), dt,
+                                                had, job_contacts_[j]);
+            }
+        });
     if (mesh_job_manifolds_.size() < mesh_jobs_.size()) mesh_job_manifolds_.resize(mesh_jobs_.size());
     parallel_for(tasks_.get(), static_cast<std::uint32_t>(mesh_jobs_.size()), 1u, [&](std::uint32_t begin, std::uint32_t end) {
         for (std::uint32_t j = begin; j < end; ++j) {
@@ -1116,7 +1117,7 @@ void World<T>::narrow_phase(T dt) {
                 next.back().was_touching = next.back().touching;
             }
         } else if (work.kind == PairKind::parts || (work.kind == PairKind::collided && !parallel)) {
-            collide_pair(pairs_[k], pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), old, work.old_end, next);
+            collide_pair(pairs_[k], pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), dt, old, work.old_end, next);
             old = work.old_end;
         } else if (work.kind == PairKind::mesh) {
             const T margin = pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt);
@@ -1128,7 +1129,7 @@ void World<T>::narrow_phase(T dt) {
             const T margin = pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt);
             for (; old < work.old_end; ++old) {
                 next.emplace_back();
-                reuse_contact(pairs_[k], margin, contacts_[old], next.back());  // true: mesh_pair_barely_moved
+                reuse_contact(pairs_[k], margin, dt, contacts_[old], next.back());  // true: mesh_pair_barely_moved
                 ++stats_.reused_contacts;
             }
         } else if (work.kind == PairKind::collided) {
@@ -1200,7 +1201,7 @@ void World<T>::index_contacts(std::size_t slots) {
 }
 
 template <class T>
-void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end,
+void World<T>::collide_pair(const ProxyPair& pair, T margin, T dt, std::size_t old_begin, std::size_t old_end,
                             std::vector<Contact<T>>& next) {
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
@@ -1213,7 +1214,7 @@ void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_beg
                 end_contact(contacts_[old++]);
             const bool had = old < old_end && contacts_[old].child_a == ca && contacts_[old].child_b == cb;
             Contact<T> c;
-            const PartsContact result = collide_parts(pair, ca, cb, margin, had ? &contacts_[old] : nullptr, c);
+            const PartsContact result = collide_parts(pair, ca, cb, margin, dt, had ? &contacts_[old] : nullptr, c);
             if (result == PartsContact::reused) ++stats_.reused_contacts;
             if (result != PartsContact::apart) next.push_back(c);
             else if (had) end_contact(contacts_[old]);  // apart: the contact ends
@@ -1227,7 +1228,7 @@ void World<T>::collide_pair(const ProxyPair& pair, T margin, std::size_t old_beg
 /// contact of those parts, or nullptr), or re-measured from `had` when the pair barely moved;
 /// apart when they are apart (out is left as it was).
 template <class T>
-typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin,
+typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, T dt,
                                                         const Contact<T>* had, Contact<T>& out) const {
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
@@ -1236,7 +1237,7 @@ typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, s
         if (!overlaps(world_bounds(a.child_shape(ca), pose_a).expanded(margin), world_bounds(b.child_shape(cb), pose_b)))
             return PartsContact::apart;
     }
-    if (had && reuse_contact(pair, margin, *had, out)) return PartsContact::reused;
+    if (had && reuse_contact(pair, margin, dt, *had, out)) return PartsContact::reused;
     const ContactManifold<T> fresh =
         generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin, settings_.linear_slop);
     if (fresh.count == 0) return PartsContact::apart;
@@ -1274,23 +1275,32 @@ void World<T>::make_contact(const ProxyPair& pair, std::uint32_t ca, std::uint32
 // points: Jolt's body-pair cache, Bullet's persistent manifold refreshed from its anchors. B's
 // motion relative to A since the manifold was made moves any of its anchors by at most
 // |Δ offset| + θ · (the anchor's distance from B's centre), θ the relative rotation (2 |Δq| for
-// small angles); while that stays within a tenth of linear_slop, every point is re-measured from
-// its two anchors along the normal carried in A's frame. That is exact for a face of A under
+// small angles); while that, plus how far the anchors can move in this step at the bodies'
+// velocities, stays within a tenth of linear_slop, every point is re-measured from its two
+// anchors along the normal carried in A's frame. That is exact for a face of A under
 // anything of B (a box on a box: the anchors on B are its corners, the plane of A's face turns
 // with A) and off by the bound for a face of B or an edge pair.
 template <class T>
-bool World<T>::reuse_contact(const ProxyPair& pair, T margin, const Contact<T>& had, Contact<T>& out) const {
+bool World<T>::reuse_contact(const ProxyPair& pair, T margin, T dt, const Contact<T>& had, Contact<T>& out) const {
     if (had.manifold.count == 0) return false;
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
     Quat<T> turn = conjugate(a.orientation()) * b.orientation();
     if (dot(turn, had.made_turn) < T(0)) turn = -turn;  // q and −q are one rotation
-    T lever = T(0);
-    for (int i = 0; i < had.manifold.count; ++i)
-        lever = std::max(lever, length_squared(had.manifold.points[static_cast<std::size_t>(i)].local_b));
+    T lever_a = T(0), lever_b = T(0);
+    for (int i = 0; i < had.manifold.count; ++i) {
+        lever_a = std::max(lever_a, length_squared(had.manifold.points[static_cast<std::size_t>(i)].local_a));
+        lever_b = std::max(lever_b, length_squared(had.manifold.points[static_cast<std::size_t>(i)].local_b));
+    }
+    lever_a = std::sqrt(lever_a), lever_b = std::sqrt(lever_b);
     const T moved = length(inverse_rotate(a.orientation(), b.position() - a.position()) - had.made_offset) +
-                    T(2) * length(turn - had.made_turn) * std::sqrt(lever);
-    if (!(moved <= T(0.1) * settings_.linear_slop)) return false;
+                    T(2) * length(turn - had.made_turn) * lever_b;
+    // ... and how far they can move during this step: a body just set spinning or pushed is
+    // collided again at once, so the speculative points of its new motion are there.
+    const T moving = (length(b.linear_velocity_ - a.linear_velocity_) + length(a.angular_velocity_) * lever_a +
+                      length(b.angular_velocity_) * lever_b) *
+                     dt;
+    if (!(moved + moving <= T(0.1) * settings_.linear_slop)) return false;
     const Transform<T> pose_a = a.transform(), pose_b = b.transform();
     Contact<T> c = had;
     c.was_touching = had.touching;
@@ -1314,11 +1324,11 @@ bool World<T>::reuse_contact(const ProxyPair& pair, T margin, const Contact<T>& 
 // (reuse_contact), the triangles near the body are the same as when they were made, and the
 // pair skips the mesh narrow phase. A pair without contacts is always collided.
 template <class T>
-bool World<T>::mesh_pair_barely_moved(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end) const {
+bool World<T>::mesh_pair_barely_moved(const ProxyPair& pair, T margin, T dt, std::size_t old_begin, std::size_t old_end) const {
     if (old_begin == old_end) return false;
     Contact<T> scratch;
     for (std::size_t o = old_begin; o < old_end; ++o)
-        if (!reuse_contact(pair, margin, contacts_[o], scratch)) return false;
+        if (!reuse_contact(pair, margin, dt, contacts_[o], scratch)) return false;
     return true;
 }
 
