@@ -226,3 +226,28 @@ TEST_CASE_TEMPLATE("a box at rest that is set spinning or pushed is collided aga
         CHECK(world.last_step_stats().contacts == 1);
     }
 }
+
+TEST_CASE_TEMPLATE("with reuse_contacts off every pair is collided each step, and a pyramid settles where it does with it on", T,
+                   float, double) {
+    std::vector<Vec3<T>> rest[2];
+    for (const bool reuse : {false, true}) {
+        World<T> world;
+        WorldSettings<T> settings;
+        settings.allow_sleeping = false;
+        settings.reuse_contacts = reuse;
+        world.set_settings(settings);
+        const scenes::Scene scene = scenes::pyramid(world, 6);
+        for (int i = 0; i < 180; ++i) world.step(T(1) / T(60));
+        const StepStats& stats = world.last_step_stats();
+        CHECK((stats.reused_contacts == 0) == !reuse);
+        CHECK(compare_with_fresh(world, T(1e-5)) == stats.contacts);
+        for (const BodyId id : scene.bodies) rest[reuse].push_back(world.body(id).position());
+    }
+    // Re-measuring moves no box by more than a fifth of its bound (a tenth of linear_slop, 0.5 mm;
+    // measured 14 µm in float, 20 µm in double).
+    REQUIRE(rest[0].size() == rest[1].size());
+    T worst = T(0);
+    for (std::size_t i = 0; i < rest[0].size(); ++i) worst = std::max(worst, length(rest[0][i] - rest[1][i]));
+    MESSAGE("largest difference in rest position: " << worst << " m");
+    CHECK(worst <= T(1e-4));
+}

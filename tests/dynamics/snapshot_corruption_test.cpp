@@ -83,10 +83,13 @@ TEST_CASE_TEMPLATE("restore_snapshot rejects each corruption seen, leaving the w
     bad(at.contacts + member_offset(contact, contact.b.generation), std::uint32_t(77), "contact with a stale handle");
     bad(at.contacts + member_offset(contact, contact.manifold.normal.x), std::numeric_limits<T>::quiet_NaN(),
         "contact normal NaN");
+    bad(at.contacts + member_offset(contact, contact.made_normal.y), T(3), "contact made normal not unit");
+    bad(at.contacts + member_offset(contact, contact.made_turn.w), std::numeric_limits<T>::quiet_NaN(), "contact made turn NaN");
     // Settings: an iteration count that makes a step never end, bool bytes, enum values.
     bad(at.settings + member_offset(settings, settings.velocity_iterations), 33554433, "33,554,433 iterations");
     bad(at.settings + member_offset(settings, settings.substeps), 0, "no substeps");
     bad(at.settings + member_offset(settings, settings.warm_starting), two, "settings bool byte 2");
+    bad(at.settings + member_offset(settings, settings.reuse_contacts), two, "settings reuse bool byte 2");
     bad(at.settings + member_offset(settings, settings.broad_phase), 9, "broad phase 9");
     bad(at.settings + member_offset(settings, settings.solver), 7, "solver 7");
     bad(at.settings + member_offset(settings, settings.gravity.y), std::numeric_limits<T>::infinity(), "infinite gravity");

@@ -54,6 +54,10 @@ struct WorldSettings {
     T max_linear_speed = T(400);         ///< m/s: speed cap against tunnelling (lifted for fast bodies by CCD)
     T max_rotation_per_step = T(0.25) * ScalarTraits<T>::pi;  ///< rad per step
     bool warm_starting = true;                                ///< reuse last step's impulses as the first guess
+    /// A pair whose contact anchors moved less than a tenth of linear_slop since its manifold was
+    /// made re-measures the points instead of colliding again (docs/collision.md, "Reusing a
+    /// manifold"); false collides every pair every step.
+    bool reuse_contacts = true;
 
     // Sleeping (islands whose bodies stay slow for sleep_time sleep; see docs/features.md).
     bool allow_sleeping = true;

@@ -124,7 +124,8 @@ bool box_ok(const Aabb<T>& b) {
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
 constexpr std::uint32_t kSnapshotVersion = 4;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
                                                       // the last substep, prismatic and swing-twist joints; 4: the
-                                                      // pose each contact's manifold was made at
+                                                      // pose each contact's manifold was made at,
+                                                      // WorldSettings::reuse_contacts
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {
@@ -371,7 +372,7 @@ namespace detail {
 template <class T>
 void SnapshotAccess<T>::check_settings(const WorldSettings<T>& s) {
     // Bools and enums first, by their bytes; then the same validation as set_settings.
-    if (!detail::raw_bool_ok(s.warm_starting) || !detail::raw_bool_ok(s.allow_sleeping))
+    if (!detail::raw_bool_ok(s.warm_starting) || !detail::raw_bool_ok(s.reuse_contacts) || !detail::raw_bool_ok(s.allow_sleeping))
         detail::report_invalid("restore_snapshot", "a settings bool byte is neither 0 nor 1", 0.0);
     const auto solver = detail::raw_enum(s.solver);
     if (solver != detail::raw_enum(SolverMode::soft_step) && solver != detail::raw_enum(SolverMode::baumgarte))

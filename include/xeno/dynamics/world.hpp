@@ -1282,7 +1282,7 @@ void World<T>::make_contact(const ProxyPair& pair, std::uint32_t ca, std::uint32
 // with A) and off by the bound for a face of B or an edge pair.
 template <class T>
 bool World<T>::reuse_contact(const ProxyPair& pair, T margin, T dt, const Contact<T>& had, Contact<T>& out) const {
-    if (had.manifold.count == 0) return false;
+    if (!settings_.reuse_contacts || had.manifold.count == 0) return false;
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
     Quat<T> turn = conjugate(a.orientation()) * b.orientation();
