@@ -6,6 +6,7 @@
 // rolling without losing speed, resting on a corner shared by six triangles, settling in a bowl,
 // and the calls that must refuse a mesh.
 #include "support/approx.hpp"
+#include "support/flat_level.hpp"
 #include "support/sim.hpp"
 
 #include "scenes/all.hpp"
@@ -20,23 +21,6 @@ using Tri = std::array<std::uint32_t, 3>;
 
 namespace {
 
-/// A flat 20 × 20 m mesh of 800 triangles at y = 0 (1 m cells, each split along a diagonal).
-template <class T>
-TriangleMesh<T> flat_mesh() {
-    const int n = 20;
-    std::vector<Vec3<T>> v;
-    std::vector<Tri> tris;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) v.push_back({static_cast<T>(i - n / 2), T(0), static_cast<T>(j - n / 2)});
-    const auto at = [](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            tris.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
-            tris.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
-        }
-    return TriangleMesh<T>(v, tris);
-}
-
 enum class Floor { mesh, heightfield, box };
 
 /// The floor at y = 0 as a mesh, a heightfield of the same plane, or one static box.
@@ -44,7 +28,7 @@ template <class T>
 BodyId add_level_floor(World<T>& w, Floor floor) {
     BodyDef<T> d;
     d.type = BodyType::static_body;
-    if (floor == Floor::mesh) return w.create_body(flat_mesh<T>(), d);
+    if (floor == Floor::mesh) return w.create_body(test::flat_mesh<T>(20), d);  // 800 triangles
     if (floor == Floor::heightfield) return w.create_body(HeightField<T>(21, 21, std::vector<T>(441, T(0)), T(1)), d);
     d.position = {T(0), T(-0.5), T(0)};
     return w.create_body(Shape<T>(Box<T>(T(10), T(0.5), T(10))), d);

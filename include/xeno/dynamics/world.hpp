@@ -65,9 +65,10 @@ struct Contact {
     bool touching = false;        ///< some point overlaps, or pushed during the last step
     bool was_touching = false;    ///< touching at the end of the previous step (events)
     bool sensor = false;          ///< one body is a sensor: reported, never solved
-    // Where the narrow phase last made this manifold: while no contact point has moved more than a
-    // tenth of linear_slop relative to A since, the next step re-measures the points instead of
-    // colliding the shapes again (docs/collision.md, "Reusing a manifold").
+    // Where the narrow phase last made this manifold: while no contact point has moved, and cannot
+    // move within the step, more than a tenth of linear_slop relative to A, the next step
+    // re-measures the points instead of colliding the shapes again (docs/collision.md, "Reusing a
+    // manifold").
     Vec3<T> made_offset{};                    ///< m, B's centre of mass in A's body frame
     Quat<T> made_turn = Quat<T>::identity();  ///< B's orientation relative to A's
     Vec3<T> made_normal{};                    ///< unit, the normal in A's body frame
@@ -478,13 +479,20 @@ private:
         return settings_.speculative_distance + (travel_speed(a) + travel_speed(b)) * dt;
     }
     /// dropped: not wanted; apart: rejected by the early-out (its contacts end); kept: both asleep;
-    /// remeasured: a mesh pair that barely moved (every contact re-measured, reuse_contact).
+    /// remeasured: a mesh pair that barely moved (its contacts re-measured into remeasured_).
     enum class PairKind : std::uint8_t { dropped, apart, kept, collided, parts, mesh, remeasured };
-    bool mesh_pair_barely_moved(const ProxyPair& pair, T margin, T dt, std::size_t old_begin, std::size_t old_end) const;
+    bool remeasure_mesh_pair(const ProxyPair& pair, T margin, T dt, std::size_t old_begin, std::size_t old_end);
+    /// B's centre of mass in A's body frame, and B's orientation relative to A's: the pose a
+    /// contact's manifold is made at (Contact::made_offset, made_turn).
+    static Vec3<T> offset_in_a(const Body<T>& a, const Body<T>& b) {
+        return inverse_rotate(a.orientation(), b.position() - a.position());
+    }
+    static Quat<T> turn_from_a(const Body<T>& a, const Body<T>& b) { return conjugate(a.orientation()) * b.orientation(); }
     void reject_apart_pairs(T dt);
     /// What the narrow phase does with a broad-phase pair, and its contacts of last step.
     struct PairWork {
         std::uint32_t old_begin, old_end;  ///< in contacts_
+        std::uint32_t remeasured_begin;    ///< kind remeasured: its contacts in remeasured_, from here
         PairKind kind;
     };
     void prepare_joints(T h);
@@ -600,6 +608,7 @@ private:
     std::vector<std::uint32_t> collide_jobs_;        ///< several workers: the pairs of kind collided, in pair order
     std::vector<Contact<T>> job_contacts_;           ///< several workers: the contact of each of collide_jobs_
     std::vector<PartsContact> job_results_;          ///< several workers: what collide_parts did for each of collide_jobs_
+    std::vector<Contact<T>> remeasured_;             ///< the re-measured contacts of mesh pairs, in pair order
     std::vector<std::uint32_t> contact_start_;       ///< per slot: the end of its run in contact_list_ (index_contacts)
     std::vector<std::uint32_t> contact_list_;        ///< contact indices grouped by body slot
     std::vector<std::uint32_t> island_parent_;       ///< union–find parents per slot (wake, sleep)
@@ -1044,6 +1053,7 @@ void World<T>::narrow_phase(T dt) {
     pair_work_.resize(pairs_.size());
     collide_jobs_.clear();
     early_jobs_.clear();
+    remeasured_.clear();
     mesh_jobs_.clear();
     std::size_t old = 0;
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
@@ -1070,7 +1080,8 @@ void World<T>::narrow_phase(T dt) {
                     : a.mesh_ || b.mesh_         ? PairKind::mesh
                     : a.compound_ || b.compound_ ? PairKind::parts
                                                  : PairKind::collided;
-        if (work.kind == PairKind::mesh && mesh_pair_barely_moved(pair, pair_margin(a, b, dt), dt, work.old_begin, work.old_end))
+        work.remeasured_begin = static_cast<std::uint32_t>(remeasured_.size());
+        if (work.kind == PairKind::mesh && remeasure_mesh_pair(pair, pair_margin(a, b, dt), dt, work.old_begin, work.old_end))
             work.kind = PairKind::remeasured;
         if (work.kind == PairKind::collided) early_jobs_.push_back(static_cast<std::uint32_t>(k));
         if (parallel && work.kind == PairKind::mesh) mesh_jobs_.push_back(static_cast<std::uint32_t>(k));
@@ -1126,12 +1137,11 @@ void World<T>::narrow_phase(T dt) {
                             next);
             old = work.old_end;
         } else if (work.kind == PairKind::remeasured) {
-            const T margin = pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt);
-            for (; old < work.old_end; ++old) {
-                next.emplace_back();
-                reuse_contact(pairs_[k], margin, dt, contacts_[old], next.back());  // true: mesh_pair_barely_moved
-                ++stats_.reused_contacts;
-            }
+            const std::uint32_t count = work.old_end - work.old_begin;
+            next.insert(next.end(), remeasured_.begin() + work.remeasured_begin,
+                        remeasured_.begin() + work.remeasured_begin + count);
+            stats_.reused_contacts += count;
+            old = work.old_end;
         } else if (work.kind == PairKind::collided) {
             // Pass 2's contact took over last step's contact of parts (0, 0), if there was one.
             if (job_results_[job] == PartsContact::reused) ++stats_.reused_contacts;
@@ -1266,8 +1276,8 @@ void World<T>::make_contact(const ProxyPair& pair, std::uint32_t ca, std::uint32
     else c.manifold.replace(fresh, a.transform(), b.transform(), settings_.contact_match_distance);
     c.touching = c.manifold.touching();
     for (int i = 0; i < c.manifold.count; ++i) c.manifold.points[static_cast<std::size_t>(i)].step_impulse = T(0);
-    c.made_offset = inverse_rotate(a.orientation(), b.position() - a.position());
-    c.made_turn = conjugate(a.orientation()) * b.orientation();
+    c.made_offset = offset_in_a(a, b);
+    c.made_turn = turn_from_a(a, b);
     c.made_normal = a.transform().inverse_apply_direction(c.manifold.normal);
 }
 
@@ -1285,7 +1295,7 @@ bool World<T>::reuse_contact(const ProxyPair& pair, T margin, T dt, const Contac
     if (!settings_.reuse_contacts || had.manifold.count == 0) return false;
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
-    Quat<T> turn = conjugate(a.orientation()) * b.orientation();
+    Quat<T> turn = turn_from_a(a, b);
     if (dot(turn, had.made_turn) < T(0)) turn = -turn;  // q and −q are one rotation
     T lever_a = T(0), lever_b = T(0);
     for (int i = 0; i < had.manifold.count; ++i) {
@@ -1293,8 +1303,7 @@ bool World<T>::reuse_contact(const ProxyPair& pair, T margin, T dt, const Contac
         lever_b = std::max(lever_b, length_squared(had.manifold.points[static_cast<std::size_t>(i)].local_b));
     }
     lever_a = std::sqrt(lever_a), lever_b = std::sqrt(lever_b);
-    const T moved = length(inverse_rotate(a.orientation(), b.position() - a.position()) - had.made_offset) +
-                    T(2) * length(turn - had.made_turn) * lever_b;
+    const T moved = length(offset_in_a(a, b) - had.made_offset) + T(2) * length(turn - had.made_turn) * lever_b;
     // ... and how far they can move during this step: a body just set spinning or pushed is
     // collided again at once, so the speculative points of its new motion are there.
     const T moving = (length(b.linear_velocity_ - a.linear_velocity_) + length(a.angular_velocity_) * lever_a +
@@ -1322,13 +1331,18 @@ bool World<T>::reuse_contact(const ProxyPair& pair, T margin, T dt, const Contac
 
 // A convex body resting on level geometry: when every contact of the pair can be re-measured
 // (reuse_contact), the triangles near the body are the same as when they were made, and the
-// pair skips the mesh narrow phase. A pair without contacts is always collided.
+// pair skips the mesh narrow phase; its contacts wait in remeasured_ for the merge. A pair
+// without contacts is always collided.
 template <class T>
-bool World<T>::mesh_pair_barely_moved(const ProxyPair& pair, T margin, T dt, std::size_t old_begin, std::size_t old_end) const {
+bool World<T>::remeasure_mesh_pair(const ProxyPair& pair, T margin, T dt, std::size_t old_begin, std::size_t old_end) {
     if (old_begin == old_end) return false;
-    Contact<T> scratch;
+    const std::size_t begin = remeasured_.size();
+    remeasured_.resize(begin + (old_end - old_begin));
     for (std::size_t o = old_begin; o < old_end; ++o)
-        if (!reuse_contact(pair, margin, dt, contacts_[o], scratch)) return false;
+        if (!reuse_contact(pair, margin, dt, contacts_[o], remeasured_[begin + (o - old_begin)])) {
+            remeasured_.resize(begin);
+            return false;
+        }
     return true;
 }
 
