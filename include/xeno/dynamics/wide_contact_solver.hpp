@@ -9,10 +9,12 @@
 // Nothing in one colour shares a moving body, so the lanes are independent and a row gets the
 // same bits whatever W it ran in; the overflow rows run through the same code one at a time.
 //
-// Per lane the Jacobians are precomputed once per step: r × n and I⁻¹ (r × n) for each point,
-// rc × t and I⁻¹ (rc × t) for friction, I⁻¹ n for twist, so a row costs dot products and
-// multiply-adds instead of cross products and matrix products, and the solve needs no masses
-// from the bodies.
+// Per lane the lever arms are precomputed once per step (r × n for each point, rc × t for
+// friction), and each body's world inverse inertia is copied into the lane as its 6 distinct
+// numbers, so the solve reads no masses from the bodies. The images I⁻¹ (r × n) are formed in
+// the sweep instead of stored: they do not depend on the impulses, so they run beside the
+// Gauss–Seidel chain, and storing them (42 numbers a lane) made a group 25 % larger, which cost
+// more than the products once the rows outgrow the cache (docs/solver.md, "Wide rows").
 #pragma once
 
 #include "../math/wide.hpp"
@@ -34,8 +36,16 @@ template <class V>
 struct WidePoint {
     WideVec3<V> r_a, r_b;    ///< m, centres of mass to the point
     WideVec3<V> rn_a, rn_b;  ///< r × n
-    WideVec3<V> ia, ib;      ///< I⁻¹ (r × n), world
     V adjusted_separation, normal_mass, normal_impulse, max_normal_impulse, step_impulse;
+};
+
+/// A symmetric 3 × 3 matrix in lanes (a world inverse inertia): its upper triangle.
+template <class V>
+struct WideSym3 {
+    V xx, xy, xz, yy, yz, zz;
+    friend WideVec3<V> operator*(const WideSym3& m, const WideVec3<V>& v) {
+        return {m.xx * v.x + m.xy * v.y + m.xz * v.z, m.xy * v.x + m.yy * v.y + m.yz * v.z, m.xz * v.x + m.yz * v.y + m.zz * v.z};
+    }
 };
 
 /// W manifolds side by side. Lanes beyond the colour's rows are padding: both bodies the static
@@ -50,12 +60,11 @@ struct WideContact {
     V count;                   ///< points per lane
     WideVec3<V> normal, t1, t2;
     V inv_mass_a, inv_mass_b, friction;
-    V bias_rate, mass_scale, impulse_scale;  ///< the lane's softness
+    WideSym3<V> inv_inertia_a, inv_inertia_b;  ///< world, frozen for the step
+    V bias_rate, mass_scale, impulse_scale;    ///< the lane's softness
     WidePoint<V> points[4];
-    WideVec3<V> a1, a2, b1, b2;      ///< rc × t1, rc × t2 for A and B
-    WideVec3<V> ia1, ia2, ib1, ib2;  ///< I⁻¹ of those
+    WideVec3<V> a1, a2, b1, b2;  ///< rc × t1, rc × t2 for A and B
     V k11, k12, k22, friction_1, friction_2;
-    WideVec3<V> ia_n, ib_n;                       ///< I⁻¹ n
     V twist_mass, twist_impulse, twist_friction;  ///< twist_friction: µ × the mean lever
 };
 
@@ -121,25 +130,35 @@ XENO_WIDE_INLINE void apply_wide(WideBody<V>& A, WideBody<V>& B, bool masked, co
     B.w = masked ? select(m, wb, B.w) : wb;
 }
 
-/// Warm start: last step's impulses applied, point by point, then friction, then twist (the
-/// order of apply_contact_impulses).
+/// Warm start: last step's impulses applied to both bodies. Applying impulses needs no velocity,
+/// so the angular impulses are summed first (points, then friction, then twist: the order of
+/// apply_contact_impulses) and each body's inverse inertia applied once.
 template <class T, int W>
 void warm_start_wide(const WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies) {
     using V = Wide<T, W>;
     WideBody<V> A = gather<T, W>(bodies, c.a, false), B = gather<T, W>(bodies, c.b, false);
+    const V zero = V::splat(T(0));
+    V push = zero;
+    WideVec3<V> turn_a{zero, zero, zero}, turn_b{zero, zero, zero};
     for (int i = 0; i < c.max_count; ++i) {
         const WidePoint<V>& p = c.points[i];
-        apply_wide(A, B, i >= c.min_count, V::splat(T(i)) < c.count, c.normal, p.normal_impulse, c.inv_mass_a, c.inv_mass_b, p.ia,
-                   p.ib);
+        // A lane's empty slots keep every sum's bits (a select, not an add of zero).
+        const bool masked = i >= c.min_count;
+        const typename V::Mask active = V::splat(T(i)) < c.count;
+        const V pushed = push + p.normal_impulse;
+        const WideVec3<V> ta = turn_a + p.rn_a * p.normal_impulse, tb = turn_b + p.rn_b * p.normal_impulse;
+        push = masked ? select(active, pushed, push) : pushed;
+        turn_a = masked ? select(active, ta, turn_a) : ta;
+        turn_b = masked ? select(active, tb, turn_b) : tb;
     }
     // Padding lanes need no mask: they write to the static stand-in, which scatter skips.
-    const WideVec3<V> f = c.t1 * c.friction_1 + c.t2 * c.friction_2;
+    const WideVec3<V> f = c.normal * push + (c.t1 * c.friction_1 + c.t2 * c.friction_2);
+    turn_a = turn_a + (c.a1 * c.friction_1 + c.a2 * c.friction_2) + c.normal * c.twist_impulse;
+    turn_b = turn_b + (c.b1 * c.friction_1 + c.b2 * c.friction_2) + c.normal * c.twist_impulse;
     A.v = A.v - f * c.inv_mass_a;
-    A.w = A.w - (c.ia1 * c.friction_1 + c.ia2 * c.friction_2);
+    A.w = A.w - c.inv_inertia_a * turn_a;
     B.v = B.v + f * c.inv_mass_b;
-    B.w = B.w + (c.ib1 * c.friction_1 + c.ib2 * c.friction_2);
-    A.w = A.w - c.ia_n * c.twist_impulse;
-    B.w = B.w + c.ib_n * c.twist_impulse;
+    B.w = B.w + c.inv_inertia_b * turn_b;
     scatter<T, W>(A, bodies, c.a);
     scatter<T, W>(B, bodies, c.b);
 }
@@ -184,7 +203,8 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
         p.normal_impulse = updated;
         p.max_normal_impulse = max(p.max_normal_impulse, updated);
         if (pass.last_of_substep) p.step_impulse = p.step_impulse + updated;
-        apply_wide(A, B, masked, active, c.normal, applied, c.inv_mass_a, c.inv_mass_b, p.ia, p.ib);
+        apply_wide(A, B, masked, active, c.normal, applied, c.inv_mass_a, c.inv_mass_b, c.inv_inertia_a * p.rn_a,
+                   c.inv_inertia_b * p.rn_b);
         total = total + (masked ? select(active, updated, zero) : updated);
     }
 
@@ -205,9 +225,9 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
     c.friction_2 = f2;
     const WideVec3<V> f = c.t1 * d1 + c.t2 * d2;
     A.v = A.v - f * c.inv_mass_a;
-    A.w = A.w - (c.ia1 * d1 + c.ia2 * d2);
+    A.w = A.w - c.inv_inertia_a * (c.a1 * d1 + c.a2 * d2);
     B.v = B.v + f * c.inv_mass_b;
-    B.w = B.w + (c.ib1 * d1 + c.ib2 * d2);
+    B.w = B.w + c.inv_inertia_b * (c.b1 * d1 + c.b2 * d2);
 
     // Twist friction about the normal.
     const typename V::Mask twisting = c.twist_mass > zero;
@@ -216,10 +236,18 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
     const V twist = min(max(c.twist_impulse - c.twist_mass * wn, zero - bound_twist), bound_twist);
     const V d_twist = twist - c.twist_impulse;
     c.twist_impulse = select(twisting, twist, c.twist_impulse);
-    A.w = select(twisting, A.w - c.ia_n * d_twist, A.w);
-    B.w = select(twisting, B.w + c.ib_n * d_twist, B.w);
+    A.w = select(twisting, A.w - (c.inv_inertia_a * c.normal) * d_twist, A.w);
+    B.w = select(twisting, B.w + (c.inv_inertia_b * c.normal) * d_twist, B.w);
     scatter<T, W>(A, bodies, c.a);
     scatter<T, W>(B, bodies, c.b);
+}
+
+/// Lane `l` of `dst` set to the upper triangle of `m` (a world inverse inertia, symmetric up to
+/// the rounding of R I⁻¹ Rᵀ).
+template <class V, class T>
+void put_sym(WideSym3<V>& dst, int l, const Mat3<T>& m) {
+    dst.xx.set(l, m.row[0].x), dst.xy.set(l, m.row[0].y), dst.xz.set(l, m.row[0].z);
+    dst.yy.set(l, m.row[1].y), dst.yz.set(l, m.row[1].z), dst.zz.set(l, m.row[2].z);
 }
 
 /// Fills lane `l` of a group from the scalar row and the bodies' frozen masses.
@@ -235,6 +263,7 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
     c.count.set(l, static_cast<T>(k.count));
     put(c.normal, k.normal), put(c.t1, k.t1), put(c.t2, k.t2);
     c.inv_mass_a.set(l, sa.inv_mass), c.inv_mass_b.set(l, sb.inv_mass), c.friction.set(l, k.friction);
+    put_sym(c.inv_inertia_a, l, sa.inv_inertia), put_sym(c.inv_inertia_b, l, sb.inv_inertia);
     c.bias_rate.set(l, k.softness.bias_rate), c.mass_scale.set(l, k.softness.mass_scale),
         c.impulse_scale.set(l, k.softness.impulse_scale);
     for (int i = 0; i < k.count; ++i) {
@@ -242,18 +271,14 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
         WidePoint<Wide<T, W>>& p = c.points[i];
         const Vec3<T> rn_a = cross(q.r_a, k.normal), rn_b = cross(q.r_b, k.normal);
         put(p.r_a, q.r_a), put(p.r_b, q.r_b), put(p.rn_a, rn_a), put(p.rn_b, rn_b);
-        put(p.ia, sa.inv_inertia * rn_a), put(p.ib, sb.inv_inertia * rn_b);
         p.adjusted_separation.set(l, q.adjusted_separation), p.normal_mass.set(l, q.normal_mass);
         p.normal_impulse.set(l, q.normal_impulse), p.max_normal_impulse.set(l, q.max_normal_impulse),
             p.step_impulse.set(l, q.step_impulse);
     }
     const Vec3<T> a1 = cross(k.rc_a, k.t1), a2 = cross(k.rc_a, k.t2), b1 = cross(k.rc_b, k.t1), b2 = cross(k.rc_b, k.t2);
     put(c.a1, a1), put(c.a2, a2), put(c.b1, b1), put(c.b2, b2);
-    put(c.ia1, sa.inv_inertia * a1), put(c.ia2, sa.inv_inertia * a2), put(c.ib1, sb.inv_inertia * b1),
-        put(c.ib2, sb.inv_inertia * b2);
     c.k11.set(l, k.k11), c.k12.set(l, k.k12), c.k22.set(l, k.k22), c.friction_1.set(l, k.friction_1),
         c.friction_2.set(l, k.friction_2);
-    put(c.ia_n, sa.inv_inertia * k.normal), put(c.ib_n, sb.inv_inertia * k.normal);
     c.twist_mass.set(l, k.twist_mass), c.twist_impulse.set(l, k.twist_impulse),
         c.twist_friction.set(l, k.friction * k.twist_lever);
 }
