@@ -405,7 +405,8 @@ int main(int argc, char** argv) {
         return 0;
     }
     const int steps = quick ? 60 : 600;  // 10 s at 60 Hz
-    std::printf("World::step, one thread, 60 Hz, %d steps each, default settings (soft step, 12 substeps), no sleeping\n", steps);
+    std::printf("World::step, one thread, 60 Hz, %d steps each, default settings (soft step, %d substeps), no sleeping\n", steps,
+                xeno::WorldSettings<float>{}.substeps);
 #if XENO_HAVE_BULLET
     std::printf(
         "Bullet %d.%02d beside xeno float: btDiscreteDynamicsWorld with its defaults (10 solver iterations), one 1/60 s\n"

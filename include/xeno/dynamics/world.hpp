@@ -520,6 +520,7 @@ private:
     void prepare(T dt);
     detail::ContactConstraint<T> contact_row(std::uint32_t m, const detail::Softness<T>& soft,
                                              const detail::Softness<T>& soft_static) const;
+    void share_support_stiffness(T static_hertz, T h);
     /// Fewest items a worker is handed per stage (task_system.hpp): about a few µs of work each.
     static constexpr std::uint32_t bounds_range = 256, row_range = 64, integrate_range = 256, finish_range = 256;
     void order_solver_bodies_in_space();
@@ -617,9 +618,12 @@ private:
     std::vector<std::uint32_t> pair_degree_;         ///< per slot: broad-phase pairs (crowd thinning)
     std::vector<std::uint64_t> crowd_histogram_;     ///< pairs by crowd size (crowd thinning)
     std::vector<ContactEvent<T>> delivered_events_;  ///< the listener's copy of events_
-    detail::WorldTasks tasks_;                       ///< where a step's parallel stages run (set_workers, set_task_system)
-    bool in_filter_ = false;                         ///< the contact filter is running: mutating calls are rejected
-    bool in_listener_ = false;                       ///< the contact listener is running: step() and update() are rejected
+    /// Per solver body: the effective masses of its contact points on static or kinematic
+    /// bodies, summed (prepare, share_support_stiffness).
+    std::vector<T> support_mass_;
+    detail::WorldTasks tasks_;  ///< where a step's parallel stages run (set_workers, set_task_system)
+    bool in_filter_ = false;    ///< the contact filter is running: mutating calls are rejected
+    bool in_listener_ = false;  ///< the contact listener is running: step() and update() are rejected
 };
 
 template <class T>
@@ -1582,8 +1586,8 @@ void World<T>::prepare(T dt) {
     const T contact_hertz = std::min(settings_.contact_hertz, T(0.125) / h);
     using detail::Softness;
     const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
-    const Softness<T> soft_static = Softness<T>::make(std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h),
-                                                      settings_.contact_damping_ratio, h);
+    const T static_hertz = std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h);
+    const Softness<T> soft_static = Softness<T>::make(static_hertz, settings_.contact_damping_ratio, h);
     // Which contacts get a row (in contact order), then the rows, independently of each other.
     row_contacts_.clear();
     bouncing_rows_.clear();
@@ -1607,9 +1611,41 @@ void World<T>::prepare(T dt) {
                      for (std::uint32_t r = begin; r < end; ++r)
                          constraints_[r] = contact_row(row_contacts_[r], soft, soft_static);
                  });
+    share_support_stiffness(static_hertz, h);
     wide_rows_.build(constraints_, solver_masses_, tasks_.get());
     stats_.colours = wide_rows_.colours_used();
     stats_.overflow_contacts = wide_rows_.overflow_rows();
+}
+
+/// Every contact point is a spring of stiffness m_eff·ω² (m_eff its normal_mass), so a body on
+/// static or kinematic ground rides its supports at ω when the m_eff of its points there add up
+/// to its mass, as for a box on one face (4 points of M/4) or a ball on one point. A table on
+/// four legs has 16 points that add up to several times its mass: its frequency on the floor
+/// was a few times ω, beyond what one sweep per substep damps, and it vibrated and walked
+/// across the floor (docs/solver.md, "Fewer sweeps: measured, not taken"). A body whose points
+/// there add up to more than 1.5 M gets ω·√(1.5 M / Σ m_eff) on each of those rows: at most
+/// 1.22 ω on its supports, however many hold it; up to 1.5 M nothing changes (the margin keeps
+/// the bodies this was not for as they were: docs/solver.md has the measurements).
+template <class T>
+void World<T>::share_support_stiffness(T static_hertz, T h) {
+    if (settings_.solver != SolverMode::soft_step) return;
+    support_mass_.assign(solver_bodies_.size(), T(0));
+    const auto supported = [&](const detail::ContactConstraint<T>& c) -> std::uint32_t {
+        const Contact<T>& contact = contacts_[c.manifold];
+        const bool a_moves = bodies_[contact.a.index].type_ == BodyType::dynamic;
+        if (a_moves == (bodies_[contact.b.index].type_ == BodyType::dynamic)) return 0;
+        return a_moves ? c.a : c.b;
+    };
+    for (const detail::ContactConstraint<T>& c : constraints_)
+        if (const std::uint32_t body = supported(c))
+            for (int i = 0; i < c.count; ++i) support_mass_[body] += c.points[static_cast<std::size_t>(i)].normal_mass;
+    for (detail::ContactConstraint<T>& c : constraints_) {
+        const std::uint32_t body = supported(c);
+        const T inv_mass = solver_masses_[body].inv_mass;
+        if (body == 0 || !(support_mass_[body] * inv_mass > T(1.5))) continue;
+        const T share = std::sqrt(T(1.5) / (support_mass_[body] * inv_mass));
+        c.softness = detail::Softness<T>::make(static_hertz * share, settings_.contact_damping_ratio, h);
+    }
 }
 
 /// The contact row of contacts_[m] (prepare): anchors, effective masses, softness and the
