@@ -4,6 +4,7 @@
 // TriangleMesh and HeightField on their own: input checks, what the build drops, active edges
 // against hand-worked cases, and box and ray queries against brute force over every triangle.
 #include "support/approx.hpp"
+#include "support/flat_level.hpp"
 
 #include <xeno/xeno.hpp>
 
@@ -13,31 +14,11 @@
 #include <set>
 
 using namespace xeno;
+using xeno::test::grid_mesh;
 using xeno::test::near;
 using Tri = std::array<std::uint32_t, 3>;
 
 namespace {
-
-/// An n × n grid of cells `cell` metres wide in the xz plane, centred on the origin, heights
-/// from `height(x, z)`, split like a HeightField's cells (both triangles facing +y).
-template <class T, class H>
-TriangleMesh<T> grid_mesh(int n, T cell, H height) {
-    std::vector<Vec3<T>> v;
-    std::vector<Tri> tris;
-    const T half = T(0.5) * cell * static_cast<T>(n);
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) {
-            const T x = cell * static_cast<T>(i) - half, z = cell * static_cast<T>(j) - half;
-            v.push_back({x, height(x, z), z});
-        }
-    const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            tris.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
-            tris.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
-        }
-    return TriangleMesh<T>(v, tris);
-}
 
 template <class T>
 Aabb<T> box_of(const MeshTriangle<T>& t) {
