@@ -159,7 +159,7 @@ struct JointConstraint {
     Vec3<T> axis_a0{}, axis_b0{}, ref_a0{}, ref_b0{};  ///< hinge frames at the start of the step
     Quat<T> qa0{}, qb0{};                              ///< orientations at the start of the step
     Softness<T> softness{};
-    Softness<T> limit_softness{};  ///< the contacts' (heavily damped): a limit is a contact in angle
+    Softness<T> limit_softness{};  ///< the contacts' frequency, damped at detail::limit_damping_ratio: a contact in angle
     /// m/s: cap on the speed at which a stretched joint is pulled together (the world's speed
     /// cap: a faster pull would be cut by the integrator anyway). Also what keeps a joint torn
     /// 1e35 m apart (a teleport, a restored snapshot) from overflowing its impulse to inf − inf.

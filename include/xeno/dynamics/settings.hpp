@@ -13,6 +13,8 @@
 #include "../error.hpp"
 #include "../math/vec3.hpp"
 
+#include <algorithm>
+
 namespace xeno {
 
 /// How contacts remove overlap. Both use sequential impulses with warm starting, accumulated
@@ -102,6 +104,20 @@ template <class T>
 constexpr T max_time_step() {
     return T(1);
 }
+
+/// The contact frequency a substep of h seconds allows: at most 1/8 of the substep rate (ωh ≤ 0.79;
+/// 90 Hz at the default 12 substeps). Stiffer than that, a stack's contacts ring (docs/solver.md,
+/// "Fewer sweeps: measured, not taken", has what a cap of 3/16 would take).
+template <class T>
+T capped_contact_hertz(const WorldSettings<T>& s, T h) {
+    return std::min(s.contact_hertz, T(0.125) / h);
+}
+
+/// Joint limits are contacts in angle, at the contacts' frequency but always this heavily damped
+/// (the default contact_damping_ratio), whatever the contacts' ratio: a limb landing on its stop
+/// is caught by the damper. With the limits at a contact ratio of 2 or 3 a ragdoll dropped on a
+/// step swung up to 7.5° past its cones (docs/solver.md, "Joint limits").
+inline constexpr double limit_damping_ratio = 10;
 
 /// The one check of a WorldSettings (constructor, set_settings, set_gravity, restore_snapshot).
 template <class T>

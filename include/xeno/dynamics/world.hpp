@@ -1583,7 +1583,7 @@ void World<T>::prepare(T dt) {
     prepare_joints(h);
 
     // Contact rows.
-    const T contact_hertz = std::min(settings_.contact_hertz, T(0.125) / h);
+    const T contact_hertz = detail::capped_contact_hertz(settings_, h);
     using detail::Softness;
     const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
     const T static_hertz = std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h);

@@ -195,7 +195,7 @@ void World<T>::prepare_joints(T h) {
     using detail::Softness;
     const Softness<T> soft = Softness<T>::make(std::min(settings_.joint_hertz, T(0.25) / h), settings_.joint_damping_ratio, h);
     const Softness<T> limit_soft =
-        Softness<T>::make(std::min(settings_.contact_hertz, T(0.125) / h), settings_.contact_damping_ratio, h);
+        Softness<T>::make(detail::capped_contact_hertz(settings_, h), T(detail::limit_damping_ratio), h);
     for (std::uint32_t i = 0; i < joints_.size(); ++i) {
         Joint<T>& j = joints_[i];
         if (!joint_active(j)) continue;
