@@ -163,6 +163,14 @@ public:
     using scalar_type = T;
 
     explicit World(const WorldSettings<T>& settings = {}) : settings_(settings) { detail::validate(settings_); }
+    // Copies take everything but the worker pool (a copy gets one of its own), moves everything.
+    // Declared here and defined after the class, not left implicit, so that compiled mode
+    // (compiled.hpp) compiles them once with the rest of World instead of in every user file.
+    World(const World&);
+    World(World&&);
+    World& operator=(const World&);
+    World& operator=(World&&) noexcept;
+    ~World();
 
     const WorldSettings<T>& settings() const { return settings_; }
     /// Replaces the settings (checked, InvalidArgument on bad values).
@@ -625,6 +633,17 @@ private:
     bool in_filter_ = false;    ///< the contact filter is running: mutating calls are rejected
     bool in_listener_ = false;  ///< the contact listener is running: step() and update() are rejected
 };
+
+template <class T>
+World<T>::World(const World&) = default;
+template <class T>
+World<T>::World(World&&) = default;
+template <class T>
+World<T>& World<T>::operator=(const World&) = default;
+template <class T>
+World<T>& World<T>::operator=(World&&) noexcept = default;
+template <class T>
+World<T>::~World() = default;
 
 template <class T>
 BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDef<T>& def) {
