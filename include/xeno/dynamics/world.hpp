@@ -190,26 +190,18 @@ public:
     /// dynamic bodies, a shape whose centre of mass is its local origin.
     BodyId create_body(std::shared_ptr<const Shape<T>> shape, const BodyDef<T>& def = {});
     /// Convenience: the shape is copied into a new shared shape.
-    BodyId create_body(const Shape<T>& shape, const BodyDef<T>& def = {}) {
-        return create_body(std::make_shared<const Shape<T>>(shape), def);
-    }
+    BodyId create_body(const Shape<T>& shape, const BodyDef<T>& def = {});
     /// A compound body (several convex parts); the compound is already centred on its centre of
     /// mass, so def.position is where that centre goes.
     BodyId create_body(std::shared_ptr<const Compound<T>> compound, const BodyDef<T>& def = {});
-    BodyId create_body(const Compound<T>& compound, const BodyDef<T>& def = {}) {
-        return create_body(std::make_shared<const Compound<T>>(compound), def);
-    }
+    BodyId create_body(const Compound<T>& compound, const BodyDef<T>& def = {});
     /// A body of level geometry, a triangle mesh or a heightfield (docs/meshes.md), placed by
     /// def.position and def.orientation (the mesh's own frame: a mesh has no centre of mass).
     /// Static or kinematic only: a dynamic definition is rejected (InvalidArgument), so the
     /// definition has no default here.
     BodyId create_body(std::shared_ptr<const MeshShape<T>> mesh, const BodyDef<T>& def);
-    BodyId create_body(const TriangleMesh<T>& mesh, const BodyDef<T>& def) {
-        return create_body(std::make_shared<const MeshShape<T>>(mesh), def);
-    }
-    BodyId create_body(const HeightField<T>& field, const BodyDef<T>& def) {
-        return create_body(std::make_shared<const MeshShape<T>>(field), def);
-    }
+    BodyId create_body(const TriangleMesh<T>& mesh, const BodyDef<T>& def);
+    BodyId create_body(const HeightField<T>& field, const BodyDef<T>& def);
     /// Removes the body and every contact it had; bodies resting on it wake up. The handle
     /// (and every copy of it) becomes stale.
     void destroy_body(BodyId id);
@@ -644,6 +636,28 @@ template <class T>
 World<T>& World<T>::operator=(World&&) noexcept = default;
 template <class T>
 World<T>::~World() = default;
+
+// The copying overloads of create_body live out of the class for the same reason: compiled mode
+// compiles their make_shared (control block, deleter, the shape variant's copy) once.
+template <class T>
+BodyId World<T>::create_body(const Shape<T>& shape, const BodyDef<T>& def) {
+    return create_body(std::make_shared<const Shape<T>>(shape), def);
+}
+
+template <class T>
+BodyId World<T>::create_body(const Compound<T>& compound, const BodyDef<T>& def) {
+    return create_body(std::make_shared<const Compound<T>>(compound), def);
+}
+
+template <class T>
+BodyId World<T>::create_body(const TriangleMesh<T>& mesh, const BodyDef<T>& def) {
+    return create_body(std::make_shared<const MeshShape<T>>(mesh), def);
+}
+
+template <class T>
+BodyId World<T>::create_body(const HeightField<T>& field, const BodyDef<T>& def) {
+    return create_body(std::make_shared<const MeshShape<T>>(field), def);
+}
 
 template <class T>
 BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDef<T>& def) {
