@@ -20,6 +20,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 using namespace xeno;
@@ -250,6 +251,30 @@ TEST_CASE("a copied world gets a pool of its own and steps to the original's bit
     for (int i = 0; i < 60; ++i) {
         world.step(1.0f / 60);
         moved.step(1.0f / 60);
+    }
+    CHECK(test::state_hash(moved) == test::state_hash(world));
+}
+
+// World's destructor, copies and moves are declared in the class and defaulted after it, so that
+// compiled mode compiles them once; they must stay what the implicit ones were.
+static_assert(std::is_copy_constructible_v<World<float>> && std::is_copy_assignable_v<World<float>>);
+static_assert(std::is_move_constructible_v<World<double>> && std::is_nothrow_move_assignable_v<World<double>>);
+static_assert(!std::is_nothrow_move_constructible_v<World<double>>);  // std::deque's move may allocate
+
+TEST_CASE("a world assigned by copy and by move steps to the original's bits") {
+    World<double> world;
+    scenes::build<double>("rain", world);
+    world.set_workers(2);
+    for (int i = 0; i < 30; ++i) world.step(1.0 / 60);
+    World<double> copied;
+    copied = world;
+    CHECK(copied.workers() == 2);
+    World<double> moved;
+    moved = std::move(copied);
+    CHECK(moved.workers() == 2);
+    for (int i = 0; i < 60; ++i) {
+        world.step(1.0 / 60);
+        moved.step(1.0 / 60);
     }
     CHECK(test::state_hash(moved) == test::state_hash(world));
 }
