@@ -959,12 +959,19 @@ void World<T>::thin_crowded_pairs() {
         (expected(mid) <= room ? low : high) = mid;
     }
     const std::uint64_t quota = low;
-    std::uint64_t kept = 0;
+    // Pairs of crowd ≤ quota are all kept: they are counted exactly in expected(quota) ≤ room.
+    // The hard cap applies to the drawn ones only (a draw may keep more than its expectation),
+    // so a pair away from the crowd is never dropped for where it happens to sit in the list.
+    std::uint64_t sure = 0;
+    for (std::uint64_t c = 1; c <= quota && c < histogram.size(); ++c) sure += histogram[c];
+    const std::uint64_t draw_room = room - sure;
+    std::uint64_t drawn = 0;
     const auto dropped = std::remove_if(pairs_.begin(), pairs_.end(), [&](const ProxyPair& p) {
         if (!both_dynamic(p)) return false;
         const std::uint64_t c = crowd(p);
-        const bool keep = kept < room && (c <= quota || detail::mix_pair(p.a, p.b) % c < quota);
-        kept += keep ? 1 : 0;
+        if (c <= quota) return false;
+        const bool keep = drawn < draw_room && detail::mix_pair(p.a, p.b) % c < quota;
+        drawn += keep ? 1 : 0;
         return !keep;
     });
     stats_.dropped_pairs = static_cast<std::size_t>(pairs_.end() - dropped);
