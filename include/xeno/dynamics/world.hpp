@@ -41,6 +41,7 @@
 #include "integrator.hpp"
 #include "joint.hpp"
 #include "query_filter.hpp"
+#include "support_stiffness.hpp"
 
 #include <algorithm>
 #include <array>
@@ -618,9 +619,11 @@ private:
     std::vector<std::uint32_t> pair_degree_;         ///< per slot: broad-phase pairs (crowd thinning)
     std::vector<std::uint64_t> crowd_histogram_;     ///< pairs by crowd size (crowd thinning)
     std::vector<ContactEvent<T>> delivered_events_;  ///< the listener's copy of events_
-    /// Per solver body: the effective masses of its contact points on static or kinematic
-    /// bodies, summed (prepare, share_support_stiffness).
-    std::vector<T> support_mass_;
+    // Per solver body, for share_support_stiffness: where its rows on static or kinematic bodies
+    // start in support_rows_, how many manifolds hold it there, and its share of the frequency.
+    std::vector<std::uint32_t> support_begin_, support_fill_, support_manifolds_;
+    std::vector<detail::SupportRow<T>> support_rows_;
+    std::vector<T> support_share_;
     detail::WorldTasks tasks_;  ///< where a step's parallel stages run (set_workers, set_task_system)
     bool in_filter_ = false;    ///< the contact filter is running: mutating calls are rejected
     bool in_listener_ = false;  ///< the contact listener is running: step() and update() are rejected
@@ -1658,33 +1661,52 @@ void World<T>::prepare(T dt) {
 }
 
 /// Every contact point is a spring of stiffness m_eff·ω² (m_eff its normal_mass), so a body on
-/// static or kinematic ground rides its supports at ω when the m_eff of its points there add up
-/// to its mass, as for a box on one face (4 points of M/4) or a ball on one point. A table on
-/// four legs has 16 points that add up to several times its mass: its frequency on the floor
-/// was a few times ω, beyond what one sweep per substep damps, and it vibrated and walked
-/// across the floor (docs/solver.md, "Fewer sweeps: measured, not taken"). A body whose points
-/// there add up to more than 1.5 M gets ω·√(1.5 M / Σ m_eff) on each of those rows: at most
-/// 1.22 ω on its supports, however many hold it; up to 1.5 M nothing changes (the margin keeps
-/// the bodies this was not for as they were: docs/solver.md has the measurements).
+/// static or kinematic ground rings on its supports at ω√λ (support_stiffness.hpp): a box on one
+/// face at √1.5 ω, a table on four legs at √6.8 ω, beyond what one sweep per substep damps; it
+/// vibrated and walked across the floor (docs/solver.md, "Support stiffness"). A body held by two
+/// or more manifolds there, with λ above support_stiffness_limit (1.5), gets ω·√(1.5/λ) on each of
+/// those rows, so no body rings faster on static ground than a box on its face. One manifold is
+/// one flat patch, which stays near 1.5 (a cube 1.5, a thin square slab 12/7) and is not measured.
 template <class T>
 void World<T>::share_support_stiffness(T static_hertz, T h) {
     if (settings_.solver != SolverMode::soft_step) return;
-    support_mass_.assign(solver_bodies_.size(), T(0));
     const auto supported = [&](const detail::ContactConstraint<T>& c) -> std::uint32_t {
         const Contact<T>& contact = contacts_[c.manifold];
         const bool a_moves = bodies_[contact.a.index].type_ == BodyType::dynamic;
         if (a_moves == (bodies_[contact.b.index].type_ == BodyType::dynamic)) return 0;
         return a_moves ? c.a : c.b;
     };
+    // Each body's support rows side by side: support_begin_[b] … support_begin_[b + 1].
+    const std::size_t n = solver_bodies_.size();
+    support_begin_.assign(n + 1, 0);
+    support_manifolds_.assign(n, 0);
+    for (const detail::ContactConstraint<T>& c : constraints_)
+        if (const std::uint32_t body = supported(c)) {
+            support_begin_[body + 1] += static_cast<std::uint32_t>(c.count);
+            ++support_manifolds_[body];
+        }
+    for (std::size_t b = 1; b <= n; ++b) support_begin_[b] += support_begin_[b - 1];
+    support_rows_.resize(support_begin_[n]);
+    support_fill_.assign(support_begin_.begin(), support_begin_.end() - 1);
     for (const detail::ContactConstraint<T>& c : constraints_)
         if (const std::uint32_t body = supported(c))
-            for (int i = 0; i < c.count; ++i) support_mass_[body] += c.points[static_cast<std::size_t>(i)].normal_mass;
+            for (int i = 0; i < c.count; ++i) {
+                const detail::ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
+                const Vec3<T>& r = body == c.a ? p.r_a : p.r_b;
+                support_rows_[support_fill_[body]++] = {c.normal, cross(r, c.normal), p.normal_mass};
+            }
+    support_share_.assign(n, T(1));
+    const T limit = T(detail::support_stiffness_limit);
+    for (std::size_t b = 1; b < n; ++b) {
+        if (support_manifolds_[b] < 2) continue;
+        const T lambda = detail::support_stiffness(support_rows_.data() + support_begin_[b],
+                                                   support_begin_[b + 1] - support_begin_[b], solver_masses_[b]);
+        if (lambda > limit) support_share_[b] = std::sqrt(limit / lambda);
+    }
     for (detail::ContactConstraint<T>& c : constraints_) {
         const std::uint32_t body = supported(c);
-        const T inv_mass = solver_masses_[body].inv_mass;
-        if (body == 0 || !(support_mass_[body] * inv_mass > T(1.5))) continue;
-        const T share = std::sqrt(T(1.5) / (support_mass_[body] * inv_mass));
-        c.softness = detail::Softness<T>::make(static_hertz * share, settings_.contact_damping_ratio, h);
+        if (body == 0 || !(support_share_[body] < T(1))) continue;
+        c.softness = detail::Softness<T>::make(static_hertz * support_share_[body], settings_.contact_damping_ratio, h);
     }
 }
 
