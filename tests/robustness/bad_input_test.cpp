@@ -144,7 +144,6 @@ TEST_CASE_TEMPLATE("every WorldSettings field is checked by the constructor, set
         {"contact_hertz", [](WorldSettings<T>& s, T v) { s.contact_hertz = v; }, false},
         {"contact_damping_ratio", [](WorldSettings<T>& s, T v) { s.contact_damping_ratio = v; }, true},
         {"static_contact_hertz_scale", [](WorldSettings<T>& s, T v) { s.static_contact_hertz_scale = v; }, false},
-        {"static_contact_damping_ratio", [](WorldSettings<T>& s, T v) { s.static_contact_damping_ratio = v; }, true},
         {"baumgarte", [](WorldSettings<T>& s, T v) { s.baumgarte = v; }, true},
         {"max_push_out_speed", [](WorldSettings<T>& s, T v) { s.max_push_out_speed = v; }, false},
         {"linear_slop", [](WorldSettings<T>& s, T v) { s.linear_slop = v; }, true},

@@ -122,10 +122,10 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 5;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
+constexpr std::uint32_t kSnapshotVersion = 4;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
                                                       // the last substep, prismatic and swing-twist joints; 4: the
                                                       // pose each contact's manifold was made at,
-                                                      // WorldSettings::reuse_contacts; 5: static_contact_damping_ratio
+                                                      // WorldSettings::reuse_contacts
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {
