@@ -476,7 +476,7 @@ TEST_CASE_TEMPLATE("regression (issue 12): round pairs report the exact minimum 
     }
 }
 
-TEST_CASE_TEMPLATE("a capsule along a box face and nearly parallel capsules get two points; crossing ones three", T, float,
+TEST_CASE_TEMPLATE("a capsule along a box face and nearly parallel capsules get two points, crossing ones three", T, float,
                    double) {
     const Shape<T> floor = Box<T>(T(5), T(0.5), T(5));
     const Shape<T> capsule = Capsule<T>(T(0.3), T(0.6));
@@ -562,7 +562,7 @@ TEST_CASE_TEMPLATE("intersect agrees with collide on the closed-form pairs and o
     CHECK(hits > 500);
 }
 
-TEST_CASE_TEMPLATE("a capsule resting on a box floor stays level on two points; a sphere rests at its radius", T, float, double) {
+TEST_CASE_TEMPLATE("a capsule resting on a box floor stays level on two points, a sphere rests at its radius", T, float, double) {
     World<T> w;  // default settings
     scenes::add_ground(w);
     BodyDef<T> lying;

@@ -55,7 +55,7 @@ TEST_CASE_TEMPLATE("a sphere swept at a box hits where a ray meets the box infla
     CHECK(!shape_cast(ball, at(T(0), T(0), T(0)), -sweep, box, at(T(5), T(0), T(0))));
 }
 
-TEST_CASE_TEMPLATE("a box swept face-on at a box meets it at gap / speed; overlapping at the start is fraction 0", T, float,
+TEST_CASE_TEMPLATE("a box swept face-on at a box meets it at gap / speed, overlapping at the start is fraction 0", T, float,
                    double) {
     const Shape<T> a = Box<T>(T(0.5), T(0.5), T(0.5)), b = Box<T>(T(0.5), T(2), T(2));
     const Quat<T> tilt = Quat<T>::from_axis_angle(Vec3<T>::unit_x(), T(0.3));  // turned about the sweep: still face-on

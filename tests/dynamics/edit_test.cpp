@@ -68,7 +68,7 @@ T fall_after(T t) {
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("a body switched static under a resting stack holds it; switched dynamic it falls with the stack in free fall",
+TEST_CASE_TEMPLATE("a body switched static under a resting stack holds it, switched dynamic it falls with the stack in free fall",
                    C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
     World<T> w(C::settings());
@@ -107,7 +107,7 @@ TEST_CASE_TEMPLATE("a body switched static under a resting stack holds it; switc
 }
 
 TEST_CASE_TEMPLATE(
-    "a kinematic body switched dynamic gets its density's mass and keeps its velocity; dynamic to kinematic "
+    "a kinematic body switched dynamic gets its density's mass and keeps its velocity, dynamic to kinematic "
     "keeps moving at constant velocity",
     C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
@@ -134,7 +134,7 @@ TEST_CASE_TEMPLATE(
     CHECK(length(w.body(k).position() - (p + v)) < T(1e-4));
 }
 
-TEST_CASE_TEMPLATE("a plate turned sensor drops the box asleep on it; turned solid again it catches the next box", C,
+TEST_CASE_TEMPLATE("a plate turned sensor drops the box asleep on it, turned solid again it catches the next box", C,
                    XENO_TEST_CONFIGS) {
     using T = typename C::T;
     World<T> w(C::settings());
@@ -159,7 +159,7 @@ TEST_CASE_TEMPLATE("a plate turned sensor drops the box asleep on it; turned sol
     CHECK(std::abs(w.body(first).position().y - T(0.5)) < T(0.01));
 }
 
-TEST_CASE_TEMPLATE("a collision filter changed under a sleeping box lets it fall through; the ground's own filter too", C,
+TEST_CASE_TEMPLATE("a collision filter changed under a sleeping box lets it fall through, the ground's own filter too", C,
                    XENO_TEST_CONFIGS) {
     using T = typename C::T;
     World<T> w(C::settings());
@@ -178,7 +178,7 @@ TEST_CASE_TEMPLATE("a collision filter changed under a sleeping box lets it fall
     CHECK(w.body(b).position().y < T(-2));
 }
 
-TEST_CASE_TEMPLATE("a disabled body's contacts end with events; it stays put, out of queries; what rested on it falls", C,
+TEST_CASE_TEMPLATE("a disabled body's contacts end with events, it stays put, out of queries, what rested on it falls", C,
                    XENO_TEST_CONFIGS) {
     using T = typename C::T;
     World<T> w(C::settings());
@@ -311,7 +311,7 @@ TEST_CASE_TEMPLATE("move_kinematic reaches its target pose in one step and carri
     CHECK(std::abs(w.body(box).position().y - start.y) < T(0.01));
 }
 
-TEST_CASE_TEMPLATE("set_awake(false) puts a falling island to sleep in mid-air; set_awake(true) lets it fall", T, float, double) {
+TEST_CASE_TEMPLATE("set_awake(false) puts a falling island to sleep in mid-air, set_awake(true) lets it fall", T, float, double) {
     World<T> w;  // the default settings
     add_ground(w);
     const BodyId a = add_box(w, Vec3<T>{T(0), T(5), T(0)});
@@ -434,7 +434,7 @@ TEST_CASE_TEMPLATE("every by-ID setter rejects bad input and changes nothing (sn
     rejects([&] { w.set_awake(stale, false); });
 }
 
-TEST_CASE_TEMPLATE("a snapshot keeps a disabled body and a changed density; the restored world steps to the same bits", T, float,
+TEST_CASE_TEMPLATE("a snapshot keeps a disabled body and a changed density, the restored world steps to the same bits", T, float,
                    double) {
     World<T> w;
     add_ground(w);

@@ -49,7 +49,7 @@ TEST_CASE_TEMPLATE("a singular matrix is reported, not divided by zero", T, floa
     CHECK(try_inverse(Mat3<T>::identity() * T(1e-6)).has_value());
 }
 
-TEST_CASE_TEMPLATE("skew matrix reproduces the cross product; outer and diagonal", T, float, double) {
+TEST_CASE_TEMPLATE("skew matrix reproduces the cross product, outer and diagonal", T, float, double) {
     const Vec3<T> a{T(0.5), T(-2), T(3)}, b{T(1), T(4), T(-1)};
     CHECK(near(skew(a) * b, cross(a, b)));
     CHECK(near(transpose(skew(a)), skew(a) * T(-1)));

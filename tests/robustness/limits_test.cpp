@@ -205,7 +205,7 @@ TEST_CASE_TEMPLATE("regression: a compound child beyond the size range is reject
 
 // 9. Time steps and length settings ---------------------------------------------------------------
 
-TEST_CASE_TEMPLATE("regression: step and fixed_time_step reject dt beyond 1 s; every dt up to it keeps a pile finite", T, float,
+TEST_CASE_TEMPLATE("regression: step and fixed_time_step reject dt beyond 1 s, every dt up to it keeps a pile finite", T, float,
                    double) {
     const T max_dt = T(1);
     for (const T dt : {std::numeric_limits<T>::denorm_min(), std::numeric_limits<T>::min(), T(1e-30), T(1e-6), T(1) / T(60),
@@ -233,7 +233,7 @@ TEST_CASE_TEMPLATE("regression: step and fixed_time_step reject dt beyond 1 s; e
     CHECK(non_finite_bodies(world) == 0);
 }
 
-TEST_CASE_TEMPLATE("regression: lengths and speeds in the settings beyond their limit are rejected; at it a pile stays finite", T,
+TEST_CASE_TEMPLATE("regression: lengths and speeds in the settings beyond their limit are rejected, at it a pile stays finite", T,
                    float, double) {
     using Edit = std::function<void(WorldSettings<T>&, T)>;
     const std::vector<std::pair<const char*, Edit>> fields = {
