@@ -69,9 +69,10 @@ TEST_CASE_TEMPLATE("contact events begin once, persist while touching and end wh
 
 TEST_CASE_TEMPLATE("without relax iterations a resting box's step impulse still carries its weight", T, float, double) {
     // The step totals are summed in each substep's last pass, which is the biased one when
-    // relax_iterations is 0 (World::solve).
+    // relax_iterations and first_relax_iterations are 0 (World::solve).
     WorldSettings<T> settings;
     settings.relax_iterations = 0;
+    settings.first_relax_iterations = 0;
     settings.allow_sleeping = false;
     World<T> w(settings);
     scenes::add_ground(w);

@@ -144,6 +144,7 @@ TEST_CASE_TEMPLATE("every WorldSettings field is checked by the constructor, set
         {"contact_hertz", [](WorldSettings<T>& s, T v) { s.contact_hertz = v; }, false},
         {"contact_damping_ratio", [](WorldSettings<T>& s, T v) { s.contact_damping_ratio = v; }, true},
         {"static_contact_hertz_scale", [](WorldSettings<T>& s, T v) { s.static_contact_hertz_scale = v; }, false},
+        {"static_contact_damping_ratio", [](WorldSettings<T>& s, T v) { s.static_contact_damping_ratio = v; }, true},
         {"baumgarte", [](WorldSettings<T>& s, T v) { s.baumgarte = v; }, true},
         {"max_push_out_speed", [](WorldSettings<T>& s, T v) { s.max_push_out_speed = v; }, false},
         {"linear_slop", [](WorldSettings<T>& s, T v) { s.linear_slop = v; }, true},
@@ -176,6 +177,7 @@ TEST_CASE_TEMPLATE("every WorldSettings field is checked by the constructor, set
         {"max_steps_per_update", [](WorldSettings<T>& s) { s.max_steps_per_update = 0; }},
         {"velocity_iterations", [](WorldSettings<T>& s) { s.velocity_iterations = 0; }},
         {"relax_iterations", [](WorldSettings<T>& s) { s.relax_iterations = -1; }},
+        {"first_relax_iterations", [](WorldSettings<T>& s) { s.first_relax_iterations = -1; }},
         {"substeps", [](WorldSettings<T>& s) { s.substeps = -3; }},
     };
     for (const auto& [name, edit] : counts) {

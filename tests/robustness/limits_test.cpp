@@ -278,6 +278,7 @@ TEST_CASE_TEMPLATE("regression: settings reject unknown enum values and iteratio
         {"substeps", [](WorldSettings<T>& x, int v) { x.substeps = v; }, 64},
         {"velocity_iterations", [](WorldSettings<T>& x, int v) { x.velocity_iterations = v; }, 256},
         {"relax_iterations", [](WorldSettings<T>& x, int v) { x.relax_iterations = v; }, 256},
+        {"first_relax_iterations", [](WorldSettings<T>& x, int v) { x.first_relax_iterations = v; }, 256},
         {"joint_iterations", [](WorldSettings<T>& x, int v) { x.joint_iterations = v; }, 64},
         {"max_steps_per_update", [](WorldSettings<T>& x, int v) { x.max_steps_per_update = v; }, 1000},
     };

@@ -3,10 +3,11 @@
 //
 // WorldSettings<T>: every tunable of the solver in one struct, in SI units for bodies of 0.1–10 m
 // (docs/conventions.md, "Units and axes"). docs/solver.md explains each and how the defaults were
-// chosen; the numbers follow Box2D v3's soft step (docs/solver-design.md, "Defaults") with 12
-// substeps and contacts at 90 Hz (measured in docs/solver.md: 8 substeps at 60 Hz let a 400:1 stack
-// overlap 3.1 cm and the 5,050-box pyramid buckle out of its plane; 12 at 90 Hz hold both, for 1.4
-// times the cost).
+// chosen; the numbers follow Box2D v3's soft step (docs/solver-design.md, "Defaults") with 8
+// substeps, contacts at 90 Hz (the cap of 3/16 of the substep rate), rows between moving bodies
+// damped at a ratio of 3 and rows on static ground at 10 (docs/solver.md, "What 8 substeps still
+// fails": one ratio for all contacts either left a 1,000:1 pair of boxes rocking or let the
+// 820-box pyramid creep; 12 substeps held both, for 1.5 times the sweeps).
 #pragma once
 
 #include "../broadphase/kind.hpp"
@@ -36,16 +37,20 @@ struct WorldSettings {
     int max_steps_per_update = 8;           ///< update() drops simulated time beyond this many steps
 
     SolverMode solver = SolverMode::soft_step;
-    int substeps = 12;                    ///< soft step: solver substeps per step
-    int velocity_iterations = 1;          ///< biased iterations per substep (soft step) or per step (baumgarte: 10 recommended)
-    int relax_iterations = 1;             ///< unbiased iterations after each substep (baumgarte: per step)
-    int joint_iterations = 4;             ///< sweeps over the joints per contact sweep: joints are few, and one
-                                          ///< sweep lets a door rebound 7 % off its stop (four: under 1 %)
-    T contact_hertz = T(90);              ///< soft step: contact stiffness as a frequency, capped at 1/8 of the substep rate
-    T contact_damping_ratio = T(10);      ///< soft step: heavily over-damped so overlap leaves without overshoot
-    T static_contact_hertz_scale = T(1);  ///< contacts with static or kinematic bodies are this much stiffer (Box2D: 2;
-                                          ///< measured here, 2 lets a box 5–200 times heavier rock forever on a light one)
-    T joint_hertz = T(120);               ///< soft step: joint stiffness, capped at 1/4 of the substep rate
+    int substeps = 8;                ///< soft step: solver substeps per step
+    int velocity_iterations = 1;     ///< biased iterations per substep (soft step) or per step (baumgarte: 10 recommended)
+    int relax_iterations = 1;        ///< unbiased iterations after each substep (baumgarte: per step)
+    int first_relax_iterations = 3;  ///< soft step: the same after a step's first substep, whose warm start carries
+                                     ///< the last step's impulses; a load released between steps sheds them here
+    int joint_iterations = 4;        ///< sweeps over the joints per contact sweep: joints are few, and one
+                                     ///< sweep lets a door rebound 7 % off its stop (four: under 1 %)
+    T contact_hertz = T(90);         ///< soft step: contact stiffness as a frequency, capped at 3/16 of the substep rate
+    T contact_damping_ratio = T(3);  ///< soft step: contacts between moving bodies, over-damped (10 creeps a big pyramid)
+    T static_contact_damping_ratio = T(10);  ///< soft step: contacts with static or kinematic bodies, heavily over-damped
+                                             ///< (at 3 a heavy box rocked for ever on a light one, 700:1 and up)
+    T static_contact_hertz_scale = T(1);     ///< contacts with static or kinematic bodies are this much stiffer (Box2D: 2;
+                                             ///< measured here, 2 lets a box 5–200 times heavier rock forever on a light one)
+    T joint_hertz = T(120);                  ///< soft step: joint stiffness, capped at 1/4 of the substep rate
     T joint_damping_ratio = T(2);
     T baumgarte = T(0.2);                ///< baumgarte mode: fraction of the overlap removed per step
     T max_push_out_speed = T(3);         ///< m/s: cap on the speed at which overlap is removed
@@ -82,7 +87,7 @@ namespace detail {
 /// them a step either takes minutes (counts) or leaves the range of T (times and lengths).
 struct SettingsLimits {
     static constexpr int max_substeps = 64;
-    static constexpr int max_iterations = 256;  ///< velocity_iterations and relax_iterations
+    static constexpr int max_iterations = 256;  ///< velocity_iterations and both relax_iterations
     static constexpr int max_joint_iterations = 64;
     static constexpr int max_steps_per_update = 1000;
     static constexpr int max_contact_pairs = 1 << 30;
@@ -105,16 +110,17 @@ constexpr T max_time_step() {
     return T(1);
 }
 
-/// The contact frequency a substep of h seconds allows: at most 1/8 of the substep rate (ωh ≤ 0.79;
-/// 90 Hz at the default 12 substeps). Stiffer than that, a stack's contacts ring (docs/solver.md,
-/// "Fewer sweeps: measured, not taken", has what a cap of 3/16 would take).
+/// The contact frequency a substep of h seconds allows: at most 3/16 of the substep rate (ωh ≤ 1.18;
+/// 90 Hz at the default 8 substeps). Stiffer than that, one sweep per substep no longer damps a
+/// stack's contacts (docs/solver.md, "Fewer sweeps: measured, not taken", has the measurements;
+/// 1/8 held the same stacks at 12 substeps).
 template <class T>
 T capped_contact_hertz(const WorldSettings<T>& s, T h) {
-    return std::min(s.contact_hertz, T(0.125) / h);
+    return std::min(s.contact_hertz, T(0.1875) / h);
 }
 
 /// Joint limits are contacts in angle, at the contacts' frequency but always this heavily damped
-/// (the default contact_damping_ratio), whatever the contacts' ratio: a limb landing on its stop
+/// (the default static_contact_damping_ratio), whatever the contacts' ratios: a limb landing on its stop
 /// is caught by the damper. With the limits at a contact ratio of 2 or 3 a ragdoll dropped on a
 /// step swung up to 7.5° past its cones (docs/solver.md, "Joint limits").
 inline constexpr double limit_damping_ratio = 10;
@@ -137,10 +143,12 @@ void validate(const WorldSettings<T>& s) {
     require_count(s.substeps, 1, SettingsLimits::max_substeps, w, "substeps");
     require_count(s.velocity_iterations, 1, SettingsLimits::max_iterations, w, "velocity_iterations");
     require_count(s.relax_iterations, 0, SettingsLimits::max_iterations, w, "relax_iterations");
+    require_count(s.first_relax_iterations, 0, SettingsLimits::max_iterations, w, "first_relax_iterations");
     require_count(s.joint_iterations, 1, SettingsLimits::max_joint_iterations, w, "joint_iterations");
     require_count(s.max_contact_pairs, 1, SettingsLimits::max_contact_pairs, w, "max_contact_pairs");
     require_positive(s.contact_hertz, w, "contact_hertz");
     require_non_negative(s.contact_damping_ratio, w, "contact_damping_ratio");
+    require_non_negative(s.static_contact_damping_ratio, w, "static_contact_damping_ratio");
     require_positive(s.static_contact_hertz_scale, w, "static_contact_hertz_scale");
     require_positive(s.joint_hertz, w, "joint_hertz");
     require_non_negative(s.joint_damping_ratio, w, "joint_damping_ratio");

@@ -122,10 +122,11 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 4;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
+constexpr std::uint32_t kSnapshotVersion = 5;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
                                                       // the last substep, prismatic and swing-twist joints; 4: the
                                                       // pose each contact's manifold was made at,
-                                                      // WorldSettings::reuse_contacts
+                                                      // WorldSettings::reuse_contacts; 5: static_contact_damping_ratio,
+                                                      // first_relax_iterations
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {
@@ -388,6 +389,8 @@ void SnapshotAccess<T>::check_settings(const WorldSettings<T>& s) {
         detail::report_invalid("restore_snapshot", "settings.velocity_iterations above 256", s.velocity_iterations);
     if (s.relax_iterations > most_iterations)
         detail::report_invalid("restore_snapshot", "settings.relax_iterations above 256", s.relax_iterations);
+    if (s.first_relax_iterations > most_iterations)
+        detail::report_invalid("restore_snapshot", "settings.first_relax_iterations above 256", s.first_relax_iterations);
     if (s.joint_iterations > most_joint_iterations)
         detail::report_invalid("restore_snapshot", "settings.joint_iterations above 64", s.joint_iterations);
     if (s.max_steps_per_update > most_steps_per_update)

@@ -1630,7 +1630,7 @@ void World<T>::prepare(T dt) {
     using detail::Softness;
     const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
     const T static_hertz = std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h);
-    const Softness<T> soft_static = Softness<T>::make(static_hertz, settings_.contact_damping_ratio, h);
+    const Softness<T> soft_static = Softness<T>::make(static_hertz, settings_.static_contact_damping_ratio, h);
     // Which contacts get a row (in contact order), then the rows, independently of each other.
     row_contacts_.clear();
     bouncing_rows_.clear();
@@ -1664,9 +1664,10 @@ void World<T>::prepare(T dt) {
 /// static or kinematic ground rings on its supports at ω√λ (support_stiffness.hpp): a box on one
 /// face at √1.5 ω, a table on four legs at √6.8 ω, beyond what one sweep per substep damps; it
 /// vibrated and walked across the floor (docs/solver.md, "Support stiffness"). A body held by two
-/// or more manifolds there, with λ above support_stiffness_limit (1.5), gets ω·√(1.5/λ) on each of
-/// those rows, so no body rings faster on static ground than a box on its face. One manifold is
-/// one flat patch, which stays near 1.5 (a cube 1.5, a thin square slab 12/7) and is not measured.
+/// or more manifolds there gets ω·√(limit/λ) on each of those rows when its λ is above the limit:
+/// support_stiffness_limit (1.5, a box on its face), and no more than ωh = support_omega_h_limit
+/// (0.8) on that fastest mode. One manifold is one flat patch, which stays near 1.5 (a cube 1.5,
+/// a thin square slab 12/7) and is not measured.
 template <class T>
 void World<T>::share_support_stiffness(T static_hertz, T h) {
     if (settings_.solver != SolverMode::soft_step) return;
@@ -1696,7 +1697,9 @@ void World<T>::share_support_stiffness(T static_hertz, T h) {
                 support_rows_[support_fill_[body]++] = {c.normal, cross(r, c.normal), p.normal_mass};
             }
     support_share_.assign(n, T(1));
-    const T limit = T(detail::support_stiffness_limit);
+    const T wh = T(2) * ScalarTraits<T>::pi * static_hertz * h;  // of one static row
+    const T limit = std::min(T(detail::support_stiffness_limit),
+                             T(detail::support_omega_h_limit * detail::support_omega_h_limit) / (wh * wh));
     for (std::size_t b = 1; b < n; ++b) {
         if (support_manifolds_[b] < 2) continue;
         const T lambda = detail::support_stiffness(support_rows_.data() + support_begin_[b],
@@ -1706,7 +1709,7 @@ void World<T>::share_support_stiffness(T static_hertz, T h) {
     for (detail::ContactConstraint<T>& c : constraints_) {
         const std::uint32_t body = supported(c);
         if (body == 0 || !(support_share_[body] < T(1))) continue;
-        c.softness = detail::Softness<T>::make(static_hertz * support_share_[body], settings_.contact_damping_ratio, h);
+        c.softness = detail::Softness<T>::make(static_hertz * support_share_[body], settings_.static_contact_damping_ratio, h);
     }
 }
 
@@ -1823,24 +1826,33 @@ void World<T>::solve(T dt) {
                 detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
             wide_rows_.warm_start(solver_bodies_, tasks_.get());
         }
+        // The first substep relaxes longer: its warm start applies the last step's impulses, and
+        // where a load vanished between steps (a support released, a body removed) one sweep a
+        // substep sheds them too slowly along a stack; the bodies it held are pushed apart and fly
+        // off at a steady speed (docs/solver.md, "Releasing a load").
+        const int relax = soft && sub == 0 ? settings_.first_relax_iterations : settings_.relax_iterations;
         pass.use_bias = true;
         for (int it = 0; it < settings_.velocity_iterations; ++it) {
             // The substep's last pass adds each point's impulse to its step total (for events
             // and restitution), inside the solve so that each worker does it for its own rows.
-            pass.last_of_substep = settings_.relax_iterations == 0 && it + 1 == settings_.velocity_iterations;
+            pass.last_of_substep = relax == 0 && it + 1 == settings_.velocity_iterations;
+            // Joints after contacts: a limb's limit then answers the impulse its landing just took
+            // (before them, a ragdoll landed 4.5° past a cone at 8 substeps; docs/solver.md).
+            wide_rows_.solve(solver_bodies_, pass, tasks_.get());
             for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
                 for (const detail::JointConstraint<T>& c : joint_rows_)
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
-            wide_rows_.solve(solver_bodies_, pass, tasks_.get());
         }
         parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
             for (std::uint32_t i = begin + 1; i <= end; ++i)
                 detail::integrate_position(solver_bodies_[i], h, integration_[i].max_speed, max_rotation);
         });
         pass.use_bias = false;
-        for (int it = 0; it < settings_.relax_iterations; ++it) {
-            pass.last_of_substep = it + 1 == settings_.relax_iterations;
-            for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
+        for (int it = 0; it < relax; ++it) {
+            pass.last_of_substep = it + 1 == relax;
+            // Joints keep relax_iterations: the first substep's extra sweeps are for stored contact
+            // impulses (with them on the joints too, a door still swung at 0.024 rad/s off its stop).
+            for (int sweep = 0; it + settings_.relax_iterations >= relax && sweep < settings_.joint_iterations; ++sweep)
                 for (const detail::JointConstraint<T>& c : joint_rows_)
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], false, h);
             wide_rows_.solve(solver_bodies_, pass, tasks_.get());
