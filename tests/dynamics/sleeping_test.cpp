@@ -249,3 +249,70 @@ TEST_CASE_TEMPLATE("two boxes resting a few millimetres apart fall asleep and st
         CHECK(std::abs(w.body(second).position().x - w.body(first).position().x - T(1) - gap) < T(1e-3));
     }
 }
+
+namespace {
+
+struct Swing {
+    double first_asleep = -1;  // s, when the bob first slept (−1: never)
+    double amplitude_end = 0;  // m, the largest |x| of the bob over the last second
+};
+
+// A 2 cm ball on a ball joint 0.1 m below a static anchor (period 2π √(L/g) ≈ 0.63 s), released
+// from rest `offset` to the side, stepped 10 s with sleeping on.
+template <class T>
+Swing swing_pendulum(T offset) {
+    World<T> w(with_sleeping<T>(true));
+    BodyDef<T> anchor_def;
+    anchor_def.type = BodyType::static_body;
+    anchor_def.position = {T(0), T(2), T(0)};
+    const BodyId anchor = w.create_body(Box<T>(T(0.01), T(0.01), T(0.01)), anchor_def);
+    const T length = T(0.1);
+    BodyDef<T> bob_def;
+    bob_def.position = {offset, T(2) - std::sqrt(length * length - offset * offset), T(0)};
+    const BodyId bob = w.create_body(Sphere<T>(T(0.02)), bob_def);
+    w.create_joint(JointDef<T>::ball(anchor, bob, anchor_def.position));
+    Swing s;
+    test::simulate(w, T(10), [&](int step) {
+        const double t = double(step + 1) / 60.0;
+        if (s.first_asleep < 0 && !w.body(bob).awake()) s.first_asleep = t;
+        if (t > 9.0) s.amplitude_end = std::max(s.amplitude_end, std::abs(double(w.body(bob).position().x)));
+    });
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a body that swings in place by millimetres sleeps though it is faster than the sleep speeds", T, float,
+                   double) {
+    // ±8 mm at ω = √(g/L) ≈ 9.9 rad/s is up to 8 cm/s and 0.8 rad/s, above sleep_linear_speed and
+    // sleep_angular_speed (0.05) for most of each swing, and a joint loses little energy: judged
+    // by speed alone it never slept. Every point stays within the 2.5 cm that the sleep speed
+    // covers in the sleep time (0.05 m/s × 0.5 s) of where it was, so its clock runs, at a
+    // quarter rate while it is fast: it sleeps within 2 s (4 × sleep_time). A dropped pile of
+    // 2,000 boxes whose top boxes rock like this took 37 s to sleep (docs/features.md).
+    const Swing small = swing_pendulum(T(0.008));
+    CHECK(small.first_asleep > 0.5);
+    CHECK(small.first_asleep < 2.0);
+    // ±5 cm leaves that reach every half swing: it keeps swinging, awake, for the whole 10 s.
+    const Swing large = swing_pendulum(T(0.05));
+    CHECK(large.first_asleep < 0);
+    CHECK(large.amplitude_end > 0.045);
+}
+
+TEST_CASE_TEMPLATE("a ball spinning in place stays awake: the turn counts as movement, not only the centre", T, float, double) {
+    // Its centre does not move, so only the turn tells. At 0.2 rad/s its surface (0.5 m out)
+    // moves 0.1 m/s and carries a point 2.5 cm in a quarter second; at 0.06 rad/s, 3 cm/s, in
+    // 0.83 s, sooner than the 2 s a fast body's clock needs: awake for the whole 5 s either way.
+    for (const T spin : {T(0.2), T(0.06)}) {
+        World<T> w(with_sleeping<T>(true));
+        BodyDef<T> d;
+        d.gravity_scale = T(0);
+        d.angular_velocity = {T(0), spin, T(0)};
+        const BodyId ball = w.create_body(Sphere<T>(T(0.5)), d);
+        bool slept = false;
+        test::simulate(w, T(5), [&](int) { slept = slept || !w.body(ball).awake(); });
+        CAPTURE(spin);
+        CHECK(!slept);
+        CHECK(std::abs(w.body(ball).angular_velocity().y - spin) < T(1e-6) * spin);
+    }
+}

@@ -32,7 +32,7 @@ struct Layout {
         free_slots = at + 8;
         box_user_data = find_bytes(bytes, std::uint64_t(0x1122334455667788ull));
         box_position =
-            box_user_data - (5 * sizeof(Vec3<T>) + sizeof(Quat<T>) + sizeof(Mat3<T>) + 6 * sizeof(T) + sizeof(Material<T>));
+            box_user_data - (6 * sizeof(Vec3<T>) + 2 * sizeof(Quat<T>) + sizeof(Mat3<T>) + 6 * sizeof(T) + sizeof(Material<T>));
     }
 };
 

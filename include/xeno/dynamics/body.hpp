@@ -80,27 +80,30 @@ public:
     /// The body's convex shape; for a compound body, its first child's shape (see child_shape).
     /// A mesh or heightfield body has none (InvalidArgument; see mesh()).
     const Shape<T>& shape() const {
-        if (mesh_)
+        if (mesh())
             detail::report_invalid("Body::shape", "a mesh or heightfield body has no convex shape (see Body::mesh); triangles",
-                                   static_cast<double>(triangle_count(*mesh_)));
-        return compound_ ? compound_->children().front().shape : *shape_;
+                                   static_cast<double>(triangle_count(*mesh())));
+        return compound() ? compound()->children().front().shape : *convex_shape();
     }
-    const std::shared_ptr<const Shape<T>>& shared_shape() const { return shape_; }
+    /// The body's convex shape as shared with other bodies, or null for compound and mesh bodies.
+    std::shared_ptr<const Shape<T>> shared_shape() const {
+        return convex_shape() ? std::shared_ptr<const Shape<T>>(geometry_, convex_shape()) : nullptr;
+    }
     /// The compound, or nullptr for a body of one convex shape.
-    const Compound<T>* compound() const { return compound_.get(); }
+    const Compound<T>* compound() const { return geometry_as<Compound<T>>(Geometry::compound); }
     /// The triangle mesh or heightfield of a level-geometry body, or nullptr.
-    const MeshShape<T>* mesh() const { return mesh_.get(); }
+    const MeshShape<T>* mesh() const { return geometry_as<MeshShape<T>>(Geometry::mesh); }
     /// Convex parts: 1 for a simple body, the children of a compound, 0 for a mesh.
-    std::uint32_t child_count() const { return compound_ ? static_cast<std::uint32_t>(compound_->size()) : mesh_ ? 0u : 1u; }
-    const Shape<T>& child_shape(std::uint32_t i) const { return compound_ ? compound_->children()[i].shape : *shape_; }
+    std::uint32_t child_count() const { return compound() ? static_cast<std::uint32_t>(compound()->size()) : mesh() ? 0u : 1u; }
+    const Shape<T>& child_shape(std::uint32_t i) const { return compound() ? compound()->children()[i].shape : *convex_shape(); }
     /// World placement of part i.
     Transform<T> child_transform(std::uint32_t i) const {
-        return compound_ ? transform() * compound_->children()[i].local : transform();
+        return compound() ? transform() * compound()->children()[i].local : transform();
     }
     /// World bounding box of the whole body (every part).
     Aabb<T> world_bounds() const {
-        if (mesh_) return xeno::world_bounds(*mesh_, transform());
-        if (!compound_) return xeno::world_bounds(*shape_, transform());
+        if (mesh()) return xeno::world_bounds(*mesh(), transform());
+        if (!compound()) return xeno::world_bounds(*convex_shape(), transform());
         Aabb<T> box;
         for (std::uint32_t i = 0; i < child_count(); ++i) box.merge(xeno::world_bounds(child_shape(i), child_transform(i)));
         return box;
@@ -197,9 +200,26 @@ private:
     /// or the acceleration it gives would leave the range of T.
     void accumulate(const Vec3<T>& force, const Vec3<T>& torque, const char* where);
 
-    std::shared_ptr<const Shape<T>> shape_;        ///< the convex shape (null for compounds)
-    std::shared_ptr<const Compound<T>> compound_;  ///< the parts (null for one convex shape)
-    std::shared_ptr<const MeshShape<T>> mesh_;     ///< level geometry (null for convex and compound bodies)
+    enum class Geometry : std::uint8_t { convex, compound, mesh };
+    /// The convex shape, or nullptr for compound and mesh bodies.
+    const Shape<T>* convex_shape() const { return geometry_as<Shape<T>>(Geometry::convex); }
+    template <class G>
+    const G* geometry_as(Geometry kind) const {
+        return geometry_kind_ == kind ? static_cast<const G*>(geometry_.get()) : nullptr;
+    }
+    /// Makes the body own one of a convex shape, a compound or a mesh (the one not null), or
+    /// nothing (a destroyed body).
+    void set_geometry(std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
+                      std::shared_ptr<const MeshShape<T>> mesh) {
+        geometry_kind_ = compound ? Geometry::compound : mesh ? Geometry::mesh : Geometry::convex;
+        geometry_ = compound ? std::shared_ptr<const void>(std::move(compound))
+                    : mesh   ? std::shared_ptr<const void>(std::move(mesh))
+                             : std::shared_ptr<const void>(std::move(shape));
+    }
+
+    // One owner of whichever geometry the body has (its kind in geometry_kind_): 16 bytes where
+    // a shared_ptr for each kind took 48 (docs/benchmarks.md, memory).
+    std::shared_ptr<const void> geometry_;
     Vec3<T> position_{};
     Quat<T> orientation_ = Quat<T>::identity();
     Vec3<T> linear_velocity_{};
@@ -210,8 +230,12 @@ private:
     T inverse_mass_{};         ///< 1/kg; zero for static/kinematic
     Material<T> material_{};
     T linear_damping_{}, angular_damping_{}, gravity_scale_{1};
-    T sleep_time_{};  ///< s spent below the sleep speeds
-    T density_{};     ///< kg/m³, for mass recomputed after a change of shape or type
+    T sleep_time_{};  ///< s spent below the sleep speeds, or near the rest pose
+    // The pose when the sleep clock last started (World::update_sleep): a body that swings or
+    // rocks in place above the sleep speeds but stays near it still counts as resting.
+    Vec3<T> rest_position_{};
+    Quat<T> rest_orientation_ = Quat<T>::identity();
+    T density_{};  ///< kg/m³, for mass recomputed after a change of shape or type
     std::uint64_t user_data_{};
     std::uint32_t generation_ = 0;  ///< matches BodyId::generation while the body lives
     std::uint32_t layer_ = 1, mask_ = ~std::uint32_t(0);
@@ -224,6 +248,7 @@ private:
     bool enabled_ = true;    ///< in the simulation (World::set_enabled)
     bool isotropic_ = true;  ///< inertia ∝ identity: no gyroscopic term
     bool moved_ = false;     ///< teleported since the last step (broad phase must see it)
+    Geometry geometry_kind_ = Geometry::convex;
 };
 
 template <class T>
@@ -375,7 +400,7 @@ void Body<T>::set_mass_properties(const MassProperties<T>& m) {
     const char* where = "Body::set_mass_properties";
     if (type_ != BodyType::dynamic)
         detail::report_invalid(where, "only dynamic bodies have mass; body type", static_cast<double>(type_));
-    detail::check_mass_properties(m, compound_ ? compound_->bounding_radius() : bounding_radius(*shape_), where);
+    detail::check_mass_properties(m, compound() ? compound()->bounding_radius() : bounding_radius(*convex_shape()), where);
     inverse_mass_ = T(1) / m.mass;
     inertia_local_ = m.inertia;
     const T mean = trace(m.inertia) / T(3);

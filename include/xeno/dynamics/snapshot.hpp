@@ -122,11 +122,11 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 5;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
+constexpr std::uint32_t kSnapshotVersion = 6;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
                                                       // the last substep, prismatic and swing-twist joints; 4: the
                                                       // pose each contact's manifold was made at,
                                                       // WorldSettings::reuse_contacts; 5: static_contact_damping_ratio,
-                                                      // first_relax_iterations
+                                                      // first_relax_iterations; 6: each body's rest pose
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {
@@ -209,7 +209,7 @@ struct SnapshotAccess {
         // Meshes and heightfields are not in the format yet (docs/meshes.md, "Limits"): refuse
         // rather than write a snapshot that would load without its level.
         for (std::uint32_t i = 0; i < world.bodies_.size(); ++i)
-            if (world.bodies_[i].alive_ && world.bodies_[i].mesh_)
+            if (world.bodies_[i].alive_ && world.bodies_[i].mesh())
                 detail::report_invalid("save_snapshot", "snapshots cannot hold mesh or heightfield bodies yet; body index",
                                        static_cast<double>(i));
         detail::ByteWriter w;
@@ -224,10 +224,10 @@ struct SnapshotAccess {
         std::vector<const Shape<T>*> shapes;
         std::vector<const Compound<T>*> compounds;
         for (const Body<T>& b : world.bodies_) {
-            if (b.shape_ && shape_ids.emplace(b.shape_.get(), static_cast<std::uint32_t>(shapes.size())).second)
-                shapes.push_back(b.shape_.get());
-            if (b.compound_ && compound_ids.emplace(b.compound_.get(), static_cast<std::uint32_t>(compounds.size())).second)
-                compounds.push_back(b.compound_.get());
+            if (b.convex_shape() && shape_ids.emplace(b.convex_shape(), static_cast<std::uint32_t>(shapes.size())).second)
+                shapes.push_back(b.convex_shape());
+            if (b.compound() && compound_ids.emplace(b.compound(), static_cast<std::uint32_t>(compounds.size())).second)
+                compounds.push_back(b.compound());
         }
         w.put(static_cast<std::uint64_t>(shapes.size()));
         for (const Shape<T>* s : shapes) detail::write_shape(w, *s);
@@ -245,11 +245,12 @@ struct SnapshotAccess {
             w.put(b.alive_);
             w.put(b.generation_);
             if (!b.alive_) continue;
-            w.put(b.shape_ ? shape_ids.at(b.shape_.get()) : ~std::uint32_t(0));
-            w.put(b.compound_ ? compound_ids.at(b.compound_.get()) : ~std::uint32_t(0));
+            w.put(b.convex_shape() ? shape_ids.at(b.convex_shape()) : ~std::uint32_t(0));
+            w.put(b.compound() ? compound_ids.at(b.compound()) : ~std::uint32_t(0));
             w.put(b.position_), w.put(b.orientation_), w.put(b.linear_velocity_), w.put(b.angular_velocity_);
             w.put(b.force_), w.put(b.torque_), w.put(b.inertia_local_), w.put(b.inverse_mass_), w.put(b.material_);
             w.put(b.linear_damping_), w.put(b.angular_damping_), w.put(b.gravity_scale_), w.put(b.sleep_time_), w.put(b.density_);
+            w.put(b.rest_position_), w.put(b.rest_orientation_);
             w.put(b.user_data_), w.put(b.layer_), w.put(b.mask_), w.put(b.type_);
             w.put(b.awake_), w.put(b.allow_sleep_), w.put(b.fast_), w.put(b.sensor_), w.put(b.isotropic_), w.put(b.moved_);
             w.put(b.enabled_);
@@ -319,11 +320,11 @@ struct SnapshotAccess {
                 if (shape >= shapes.size()) detail::report_invalid("restore_snapshot", "a body refers to a missing shape", shape);
                 if (compound != ~std::uint32_t(0))
                     detail::report_invalid("restore_snapshot", "a body refers to both a shape and a compound", compound);
-                b.shape_ = shapes[shape];
+                b.set_geometry(shapes[shape], nullptr, nullptr);
             } else {
                 if (compound >= compounds.size())
                     detail::report_invalid("restore_snapshot", "a body refers to a missing compound", compound);
-                b.compound_ = compounds[compound];
+                b.set_geometry(nullptr, compounds[compound], nullptr);
             }
             b.position_ = r.get<Vec3<T>>(), b.orientation_ = r.get<Quat<T>>();
             b.linear_velocity_ = r.get<Vec3<T>>(), b.angular_velocity_ = r.get<Vec3<T>>();
@@ -331,6 +332,7 @@ struct SnapshotAccess {
             b.inverse_mass_ = r.get<T>(), b.material_ = r.get<Material<T>>();
             b.linear_damping_ = r.get<T>(), b.angular_damping_ = r.get<T>(), b.gravity_scale_ = r.get<T>(),
             b.sleep_time_ = r.get<T>(), b.density_ = r.get<T>();
+            b.rest_position_ = r.get<Vec3<T>>(), b.rest_orientation_ = r.get<Quat<T>>();
             b.user_data_ = r.get<std::uint64_t>(), b.layer_ = r.get<std::uint32_t>(), b.mask_ = r.get<std::uint32_t>();
             const std::uint8_t type = r.get<std::uint8_t>();
             if (type > static_cast<std::uint8_t>(BodyType::dynamic))
@@ -426,11 +428,13 @@ template <class T>
 void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
     const Body<T>& b = w.bodies_[slot];
     const auto bad = [slot](const char* what) { detail::report_corrupt(what, slot); };
-    const T radius = b.compound_ ? b.compound_->bounding_radius() : bounding_radius(*b.shape_);
-    if (b.shape_ && length(interior_point(*b.shape_)) > T(1e-4) * radius)
+    const T radius = b.compound() ? b.compound()->bounding_radius() : bounding_radius(*b.convex_shape());
+    if (b.convex_shape() && length(interior_point(*b.convex_shape())) > T(1e-4) * radius)
         bad("a body's shape is not centred on its centre of mass; body slot");
     if (!is_finite(b.position_) || !detail::unit_quat(b.orientation_))
         bad("a body's pose is not finite with a unit orientation; body slot");
+    if (!is_finite(b.rest_position_) || !detail::unit_quat(b.rest_orientation_))
+        bad("a body's rest pose (sleeping) is not finite with a unit orientation; body slot");
     if (!is_finite(b.linear_velocity_) || !is_finite(b.angular_velocity_) || !is_finite(b.force_) || !is_finite(b.torque_))
         bad("a body's velocity, force or torque is not finite; body slot");
     if (!(b.material_.friction >= T(0) && std::isfinite(b.material_.friction) && b.material_.restitution >= T(0) &&
@@ -485,7 +489,7 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
     };
     const auto reach = [&](std::uint32_t slot) {  // Δv at any point of the body per N·s (1/kg)
         const Body<T>& b = w.bodies_[slot];
-        const T r = b.compound_ ? b.compound_->bounding_radius() : bounding_radius(*b.shape_);
+        const T r = b.compound() ? b.compound()->bounding_radius() : bounding_radius(*b.convex_shape());
         return b.inverse_mass_ + inv_inertia(slot) * r * r;
     };
     const auto linear_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) {

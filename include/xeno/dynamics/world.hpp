@@ -532,6 +532,7 @@ private:
     void finish();
     void discard_overflowed_solve();
     void update_sleep(T dt);
+    T moved_from_rest(const Body<T>& b) const;
     void update_query_tree();
     void rebuild_query_tree();
     /// A tree grown by edits queries several times slower than a built one (measured 5x at
@@ -739,9 +740,7 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     b = Body<T>{};
     b.generation_ = generation;
     b.alive_ = true;
-    b.shape_ = std::move(shape);
-    b.compound_ = std::move(compound);
-    b.mesh_ = std::move(mesh);
+    b.set_geometry(std::move(shape), std::move(compound), std::move(mesh));
     b.type_ = def.type;
     b.position_ = def.position;
     b.orientation_ = normalized(def.orientation);
@@ -762,7 +761,7 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     b.density_ = def.density;
     if (def.type == BodyType::dynamic) {
         b.set_mass_properties(mass);
-        if (def.mass > T(0)) b.density_ = def.mass / unit_mass(b.shape_.get(), b.compound_.get()).mass;
+        if (def.mass > T(0)) b.density_ = def.mass / unit_mass(b.convex_shape(), b.compound()).mass;
     }
     b.moved_ = true;
     bounds_[slot] = b.world_bounds();
@@ -817,9 +816,7 @@ void World<T>::destroy_body(BodyId id) {
             destroy_joint({i, joints_[i].generation});
     Body<T>& b = bodies_[slot];
     b.alive_ = false;
-    b.shape_.reset();
-    b.compound_.reset();
-    b.mesh_.reset();
+    b.set_geometry(nullptr, nullptr, nullptr);
     ++b.generation_;
     bounds_[slot] = Aabb<T>{};
     query_tree_of(slot).remove(slot);
@@ -1041,8 +1038,8 @@ void World<T>::update_bounds(T dt) {
     const bool all = early_out_.size() != bodies_.size();
     if (all) early_out_.resize(bodies_.size());
     const auto place_bound = [&](std::uint32_t i, const Body<T>& b) {
-        if (b.mesh_ || b.compound_) early_out_.clear(i);
-        else early_out_.set(i, *b.shape_, b.transform());
+        if (b.mesh() || b.compound()) early_out_.clear(i);
+        else early_out_.set(i, *b.convex_shape(), b.transform());
     };
     parallel_for(tasks_.get(), static_cast<std::uint32_t>(bodies_.size()), bounds_range,
                  [&](std::uint32_t begin, std::uint32_t end) {
@@ -1122,11 +1119,11 @@ void World<T>::narrow_phase(T dt) {
                             !std::binary_search(unconnected_pairs_.begin(), unconnected_pairs_.end(), pair_key(pair.a, pair.b)) &&
                             filter_allows(pair.a, pair.b);
         // Both asleep (or asleep on static): the contacts stay as they were.
-        work.kind = !wanted                      ? PairKind::dropped
-                    : !active(a) && !active(b)   ? PairKind::kept
-                    : a.mesh_ || b.mesh_         ? PairKind::mesh
-                    : a.compound_ || b.compound_ ? PairKind::parts
-                                                 : PairKind::collided;
+        work.kind = !wanted                        ? PairKind::dropped
+                    : !active(a) && !active(b)     ? PairKind::kept
+                    : a.mesh() || b.mesh()         ? PairKind::mesh
+                    : a.compound() || b.compound() ? PairKind::parts
+                                                   : PairKind::collided;
         work.remeasured_begin = static_cast<std::uint32_t>(remeasured_.size());
         if (work.kind == PairKind::mesh && remeasure_mesh_pair(pair, pair_margin(a, b, dt), dt, work.old_begin, work.old_end))
             work.kind = PairKind::remeasured;
@@ -1290,7 +1287,7 @@ typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, s
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
     const Transform<T> pose_a = a.child_transform(ca), pose_b = b.child_transform(cb);
-    if (a.compound_ || b.compound_) {  // parts whose boxes are apart need no narrow phase
+    if (a.compound() || b.compound()) {  // parts whose boxes are apart need no narrow phase
         if (!overlaps(world_bounds(a.child_shape(ca), pose_a).expanded(margin), world_bounds(b.child_shape(cb), pose_b)))
             return PartsContact::apart;
     }
@@ -1398,12 +1395,12 @@ template <class T>
 void World<T>::mesh_manifolds(const ProxyPair& pair, T margin, MeshManifolds& out) const {
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
-    const Body<T>& mesh = a.mesh_ ? a : b;
-    const Body<T>& other = a.mesh_ ? b : a;
+    const Body<T>& mesh = a.mesh() ? a : b;
+    const Body<T>& other = a.mesh() ? b : a;
     out.contacts.clear();
     out.parts.clear();
     for (std::uint32_t part = 0; part < other.child_count(); ++part) {
-        collide_mesh(*mesh.mesh_, mesh.transform(), other.child_shape(part), other.child_transform(part), margin,
+        collide_mesh(*mesh.mesh(), mesh.transform(), other.child_shape(part), other.child_transform(part), margin,
                      settings_.linear_slop, out.contacts);
         out.parts.resize(out.contacts.size(), part);
     }
@@ -1416,7 +1413,7 @@ void World<T>::mesh_manifolds(const ProxyPair& pair, T margin, MeshManifolds& ou
 template <class T>
 void World<T>::merge_mesh_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end,
                                const MeshManifolds& fresh_list, std::vector<Contact<T>>& next) {
-    const bool mesh_is_a = bodies_[pair.a].mesh_ != nullptr;
+    const bool mesh_is_a = bodies_[pair.a].mesh() != nullptr;
     old_taken_.assign(old_end - old_begin, 0);
     for (std::size_t i = 0; i < fresh_list.contacts.size(); ++i) {
         const MeshContact<T>& m = fresh_list.contacts[i];
@@ -1947,22 +1944,42 @@ void World<T>::discard_overflowed_solve() {
     }
 }
 
+// How far any point of a body is from where it was when its sleep clock started: the centre's
+// move plus the chord its turn sweeps at the bounding radius, 2 r sin(θ/2), which is 2 r times
+// the length of the vector part of the relative rotation. Compared with the distance the sleep
+// speed covers in the sleep time, this lets a body that rocks or swings in place (small
+// amplitude, speeds above the thresholds) sleep, as Jolt's three-point sleep test does.
+template <class T>
+T World<T>::moved_from_rest(const Body<T>& b) const {
+    const Quat<T> turn = conjugate(b.rest_orientation_) * b.orientation_;
+    const T chord = T(2) * std::sqrt(turn.x * turn.x + turn.y * turn.y + turn.z * turn.z);
+    const T radius = b.compound() ? b.compound()->bounding_radius() : bounding_radius(*b.convex_shape());
+    return length(b.position_ - b.rest_position_) + chord * radius;
+}
+
 template <class T>
 void World<T>::update_sleep(T dt) {
     if (!settings_.allow_sleeping) return;
     build_islands();
     auto find = [&](std::uint32_t slot) { return island_root(slot); };
-    // A body's sleep clock runs while it is slow; an island sleeps when all its clocks passed
-    // sleep_time and none refuses to sleep or touches a moving kinematic body.
+    // A body's sleep clock runs while it is slow or stays within `reach` of its pose when the
+    // clock started (moved_from_rest); an island sleeps when all its clocks passed sleep_time and
+    // none refuses to sleep or touches a moving kinematic body.
     const T lin_sq = settings_.sleep_linear_speed * settings_.sleep_linear_speed;
     const T ang_sq = settings_.sleep_angular_speed * settings_.sleep_angular_speed;
+    const T reach = settings_.sleep_linear_speed * settings_.sleep_time;
     std::vector<T>& island_min = island_sleep_time_;
     island_min.assign(bodies_.size(), ScalarTraits<T>::infinity);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         Body<T>& b = bodies_[i];
         if (!b.alive_ || !b.enabled_ || b.type_ != BodyType::dynamic || !b.awake_) continue;
         const bool slow = length_squared(b.linear_velocity_) < lin_sq && length_squared(b.angular_velocity_) < ang_sq;
-        b.sleep_time_ = (slow && b.allow_sleep_) ? b.sleep_time_ + dt : T(0);
+        if (b.sleep_time_ == T(0)) b.rest_position_ = b.position_, b.rest_orientation_ = b.orientation_;  // (re)starts
+        // Near its rest pose but faster than the sleep speeds, the clock runs at a quarter rate,
+        // so such a body sleeps after 4 × sleep_time: one still settling (a rock rocking onto a
+        // face, at 5 cm/s and 0.24 rad/s when it slept at full rate) gets time to come to rest.
+        const T rate = slow ? T(1) : moved_from_rest(b) <= reach ? T(0.25) : T(0);
+        b.sleep_time_ = (rate > T(0) && b.allow_sleep_) ? b.sleep_time_ + rate * dt : T(0);
         const std::uint32_t root = find(i);
         island_min[root] = std::min(island_min[root], b.sleep_time_);
     }

@@ -156,9 +156,7 @@ void World<T>::set_shape_impl(std::uint32_t slot, std::shared_ptr<const Shape<T>
     if (recompute) m = dynamic_mass(shape.get(), compound.get(), b.density_, T(0), where);
     wake_overlapping(slot);
     end_contacts_of(slot);
-    b.shape_ = std::move(shape);
-    b.compound_ = std::move(compound);
-    b.mesh_.reset();  // a mesh body given a convex shape becomes a convex body
+    b.set_geometry(std::move(shape), std::move(compound), nullptr);  // a mesh body given a convex shape becomes a convex body
     if (recompute) b.set_mass_properties(m);
     b.wake();
     place_in_broad_phase(slot);
@@ -171,8 +169,7 @@ void World<T>::set_density(BodyId id, T density) {
     require_outside_filter(where);
     Body<T>& b = bodies_[checked(id, where)];
     detail::require_positive(density, where, "density");
-    if (b.type_ == BodyType::dynamic)
-        b.set_mass_properties(dynamic_mass(b.shape_.get(), b.compound_.get(), density, T(0), where));
+    if (b.type_ == BodyType::dynamic) b.set_mass_properties(dynamic_mass(b.convex_shape(), b.compound(), density, T(0), where));
     b.density_ = density;
 }
 
@@ -196,15 +193,15 @@ void World<T>::set_type(BodyId id, BodyType type) {
                 bodies_[j.a.index == slot ? j.b.index : j.a.index].type_ == BodyType::static_body)
                 detail::report_invalid(where, "a body jointed to a static body cannot become static; body index",
                                        static_cast<double>(slot));
-    if (type == BodyType::dynamic && b.mesh_)
+    if (type == BodyType::dynamic && b.mesh())
         detail::report_invalid(where, "a mesh or heightfield body cannot become dynamic (it has no volume to weigh); triangles",
-                               static_cast<double>(triangle_count(*b.mesh_)));
+                               static_cast<double>(triangle_count(*b.mesh())));
     MassProperties<T> m{};
     if (type == BodyType::dynamic) {
         if (!(b.density_ > T(0) && std::isfinite(b.density_)))
             detail::report_invalid(where, "a body becoming dynamic needs a density > 0 (set_density); density",
                                    static_cast<double>(b.density_));
-        m = dynamic_mass(b.shape_.get(), b.compound_.get(), b.density_, T(0), where);
+        m = dynamic_mass(b.convex_shape(), b.compound(), b.density_, T(0), where);
     }
     query_tree_for(type).reserve(bodies_.size());  // may throw: before anything changes
     wake_contacts_of(slot);

@@ -31,8 +31,8 @@ template <class T>
 std::optional<RayHit<T>> World<T>::nearest_hit(std::uint32_t slot, const Ray<T>& ray) const {
     const Body<T>& b = bodies_[slot];
     std::optional<RayHit<T>> nearest;
-    if (b.mesh_) {
-        if (const auto hit = xeno::raycast(*b.mesh_, b.transform(), ray)) nearest = hit->first;
+    if (b.mesh()) {
+        if (const auto hit = xeno::raycast(*b.mesh(), b.transform(), ray)) nearest = hit->first;
     }
     for (std::uint32_t k = 0; k < b.child_count(); ++k)
         if (const std::optional<RayHit<T>> hit = xeno::raycast(b.child_shape(k), b.child_transform(k), ray))
@@ -136,7 +136,7 @@ std::vector<BodyId> World<T>::overlap_shape(const Shape<T>& shape, const Transfo
     const Aabb<T> box = world_bounds(shape, pose);
     return overlapping(box, filter, [&](std::uint32_t slot) {
         const Body<T>& b = bodies_[slot];
-        if (b.mesh_ && intersect_mesh(*b.mesh_, b.transform(), shape, pose)) return true;
+        if (b.mesh() && intersect_mesh(*b.mesh(), b.transform(), shape, pose)) return true;
         for (std::uint32_t k = 0; k < b.child_count(); ++k)
             if (intersect(shape, pose, b.child_shape(k), b.child_transform(k))) return true;
         return false;
@@ -158,10 +158,10 @@ std::optional<WorldShapeCastHit<T>> World<T>::shape_cast(const Shape<T>& shape, 
         tree.query(swept, [&](std::uint32_t slot) {
             if (!seen_by(filter, slot)) return;
             const Body<T>& b = bodies_[slot];
-            for (std::uint32_t k = 0; k < b.child_count() + (b.mesh_ ? 1u : 0u); ++k) {
+            for (std::uint32_t k = 0; k < b.child_count() + (b.mesh() ? 1u : 0u); ++k) {
                 const std::optional<ShapeCastHit<T>> hit =
-                    b.mesh_ ? xeno::shape_cast(shape, pose, translation, *b.mesh_, b.transform())
-                            : xeno::shape_cast(shape, pose, translation, b.child_shape(k), b.child_transform(k));
+                    b.mesh() ? xeno::shape_cast(shape, pose, translation, *b.mesh(), b.transform())
+                             : xeno::shape_cast(shape, pose, translation, b.child_shape(k), b.child_transform(k));
                 if (!hit) continue;
                 if (!best || hit->fraction < best->hit.fraction ||
                     (hit->fraction == best->hit.fraction && slot < best->body.index))
