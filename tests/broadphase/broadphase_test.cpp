@@ -168,6 +168,33 @@ TEST_CASE_TEMPLATE("the broad phases agree over frames of small moves with slots
     CHECK(tree.reinsertions() < moves / 2);
 }
 
+TEST_CASE_TEMPLATE("sweep and prune answers an unchanged frame from the last one, and any change of one box is seen", T, float,
+                   double) {
+    // Frames alternate between no change (the last pairs are returned) and one box changed in one
+    // coordinate, in turn each of the six (sweep axis and cross axes, min and max), by a step that
+    // makes or breaks contacts, or one box emptied or refilled.
+    scenes::Random rng(91);
+    std::vector<Aabb<T>> boxes = random_scene<T>(9, 400, 12.0);
+    SweepAndPrune<T> sap;
+    AabbTree<T> tree(T(0.1));
+    for (int frame = 0; frame < 120; ++frame) {
+        CAPTURE(frame);
+        require_same_pairs(boxes, sap, tree);
+        if (frame % 2 == 0) continue;  // the next frame sees the same boxes
+        const std::size_t k = rng.index(static_cast<std::uint32_t>(boxes.size()));
+        Aabb<T>& b = boxes[k];
+        if (frame % 14 == 13) {
+            b = b.empty() ? random_box<T>(rng, 12.0) : Aabb<T>{};
+            continue;
+        }
+        if (b.empty()) continue;
+        const int coordinate = (frame / 2) % 6, axis = coordinate % 3;
+        const T step = T(0.25) * (rng.uniform() < 0.5 ? T(-1) : T(1));
+        if (coordinate < 3) b.min[axis] = std::min(b.min[axis] + step, b.max[axis]);
+        else b.max[axis] = std::max(b.max[axis] + step, b.min[axis]);
+    }
+}
+
 TEST_CASE_TEMPLATE("the tree stays valid and shallow under inserts, removes and moves, and queries its fat boxes", T, float,
                    double) {
     scenes::Random rng(2024);

@@ -22,6 +22,8 @@
 // (Bullet's btMultiSapBroadPhase and Tracy et al., "Efficient Large-Scale Sweep and Prune Methods
 // with AABB Insertion and Removal", IEEE VR 2009, split the sweep the same way).
 // Empty boxes (free slots) never pair. Boxes must not contain NaN.
+// When no box changed since the last call (a world asleep, or at rest), steps 3 and 4 would find
+// the same pairs again: the last call's are returned instead.
 #pragma once
 
 #include "../math/aabb.hpp"
@@ -66,6 +68,8 @@ private:
     std::vector<T> sizes_;                        ///< scratch: sampled box sizes
     std::vector<std::uint32_t> counts_;           ///< scratch for sorting the pairs
     std::vector<ProxyPair> scratch_;
+    std::vector<ProxyPair> last_pairs_;  ///< the last call's pairs, for a call whose boxes are the same
+    bool last_valid_ = false;
     int axis_ = -1;
     std::size_t cells_u_ = 1, cells_v_ = 1;
 };
@@ -133,6 +137,7 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
 
     // 2. Refresh the boxes in the previous order (new proxies appended; the one pass that reads
     //    `boxes` out of order), then insertion sort.
+    bool same = last_valid_ && axis == axis_ && order_.size() == n;
     if (axis != axis_ || order_.size() > n) {
         order_.clear();
         axis_ = axis;
@@ -141,17 +146,22 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
         order_.push_back({T(0), T(0), T(0), T(0), T(0), T(0), static_cast<std::uint32_t>(i), 0, 0});
     for (Item& it : order_) {
         const Aabb<T>& b = boxes[it.proxy];
+        Item fresh = it;
         if (b.empty()) {
-            it.min = it.min_u = it.min_v = inf;
-            it.max = it.max_u = it.max_v = -inf;
+            fresh.min = fresh.min_u = fresh.min_v = inf;
+            fresh.max = fresh.max_u = fresh.max_v = -inf;
         } else {
-            it.min = b.min[axis];
-            it.max = b.max[axis];
-            it.min_u = b.min[u];
-            it.max_u = b.max[u];
-            it.min_v = b.min[v];
-            it.max_v = b.max[v];
+            fresh.min = b.min[axis], fresh.max = b.max[axis];
+            fresh.min_u = b.min[u], fresh.max_u = b.max[u];
+            fresh.min_v = b.min[v], fresh.max_v = b.max[v];
         }
+        same = same && fresh.min == it.min && fresh.max == it.max && fresh.min_u == it.min_u && fresh.max_u == it.max_u &&
+               fresh.min_v == it.min_v && fresh.max_v == it.max_v;
+        it = fresh;
+    }
+    if (same) {  // every box as last time: so are the pairs
+        pairs = last_pairs_;
+        return;
     }
     // Insertion sort while the order is nearly right; past a budget of moves (a cold start, or a
     // scene that changed a lot) a full sort is cheaper.
@@ -220,6 +230,8 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
         }
     }
     detail::sort_pairs_by_first(pairs, n, counts_, scratch_);
+    last_pairs_ = pairs;
+    last_valid_ = true;
 }
 
 namespace f32 {

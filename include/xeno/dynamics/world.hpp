@@ -566,7 +566,11 @@ private:
     WorldSettings<T> settings_;
     std::deque<Body<T>> bodies_;  ///< a deque: references stay valid as it grows
     std::vector<std::uint32_t> free_slots_;
-    std::vector<Aabb<T>> bounds_;              ///< per slot; empty for free slots
+    std::vector<Aabb<T>> bounds_;  ///< per slot; empty for free slots
+    // Per slot: bounds_ (and the early-out bound) were placed while the body slept, with the
+    // speculative distance bounds_margin_. Asleep and not moved, it would get the same box again.
+    std::vector<std::uint8_t> bounds_asleep_;
+    T bounds_margin_ = T(-1);
     std::vector<Transform<T>> previous_pose_;  ///< per slot: pose before the last step
     SweepAndPrune<T> sweep_;
     AabbTree<T> tree_;
@@ -1035,27 +1039,33 @@ void World<T>::update_bounds(T dt) {
     // so contacts exist before the bodies meet. The early-out's bound of each convex body is
     // placed here too: once per body, not per pair.
     // (After bodies were added or a snapshot restored, every body's bound is placed again.)
-    const bool all = early_out_.size() != bodies_.size();
-    if (all) early_out_.resize(bodies_.size());
+    const bool all = early_out_.size() != bodies_.size() || settings_.speculative_distance != bounds_margin_;
+    if (all) early_out_.resize(bodies_.size()), bounds_asleep_.assign(bodies_.size(), 0);
+    bounds_margin_ = settings_.speculative_distance;
     const auto place_bound = [&](std::uint32_t i, const Body<T>& b) {
         if (b.mesh() || b.compound()) early_out_.clear(i);
         else early_out_.set(i, *b.convex_shape(), b.transform());
     };
-    parallel_for(tasks_.get(), static_cast<std::uint32_t>(bodies_.size()), bounds_range,
-                 [&](std::uint32_t begin, std::uint32_t end) {
-                     for (std::uint32_t i = begin; i < end; ++i) {
-                         Body<T>& b = bodies_[i];
-                         if (!b.alive_ || !b.enabled_) continue;  // a disabled body's box stays empty
-                         if (b.type_ == BodyType::static_body && !b.moved_) {
-                             if (all) place_bound(i, b);
-                             continue;
-                         }
-                         const T reach = settings_.speculative_distance + travel_speed(b) * dt;
-                         bounds_[i] = b.world_bounds().expanded(reach);
-                         place_bound(i, b);
-                         b.moved_ = false;
-                     }
-                 });
+    parallel_for(
+        tasks_.get(), static_cast<std::uint32_t>(bodies_.size()), bounds_range, [&](std::uint32_t begin, std::uint32_t end) {
+            for (std::uint32_t i = begin; i < end; ++i) {
+                Body<T>& b = bodies_[i];
+                if (!b.alive_ || !b.enabled_) continue;  // a disabled body's box stays empty
+                if (b.type_ == BodyType::static_body && !b.moved_) {
+                    if (all) place_bound(i, b);
+                    continue;
+                }
+                // A sleeper that has not moved gets the box it got last step: skip it.
+                // (Whatever moves or reshapes a body sets moved_, create_body included.)
+                const bool asleep = b.type_ == BodyType::dynamic && !b.awake_ && length_squared(b.linear_velocity_) == T(0);
+                if (asleep && bounds_asleep_[i] && !b.moved_) continue;
+                const T reach = settings_.speculative_distance + travel_speed(b) * dt;
+                bounds_[i] = b.world_bounds().expanded(reach);
+                place_bound(i, b);
+                bounds_asleep_[i] = asleep ? 1 : 0;
+                b.moved_ = false;
+            }
+        });
 }
 
 // The queries' tree holds each body's current box: after the step, every body whose pose changed
@@ -1513,6 +1523,8 @@ void World<T>::wake_touched_islands(T dt) {
     // active body touches one of its bodies, has a contact with it that can close within this
     // step (speculative points count) or is jointed to it: an awake body is never solved against
     // a sleeping one, which would act as an immovable wall and eat the impact.
+    // (Nothing active, nothing wakes: a world asleep skips the islands.)
+    if (std::none_of(bodies_.begin(), bodies_.end(), [](const Body<T>& b) { return b.alive_ && active(b); })) return;
     build_islands();
     auto find = [&](std::uint32_t slot) { return island_root(slot); };
     auto sleeping = [&](std::uint32_t slot) {
@@ -1960,6 +1972,10 @@ T World<T>::moved_from_rest(const Body<T>& b) const {
 template <class T>
 void World<T>::update_sleep(T dt) {
     if (!settings_.allow_sleeping) return;
+    const auto awake_dynamic = [](const Body<T>& b) {
+        return b.alive_ && b.enabled_ && b.type_ == BodyType::dynamic && b.awake_;
+    };
+    if (std::none_of(bodies_.begin(), bodies_.end(), awake_dynamic)) return;  // no clock to run
     build_islands();
     auto find = [&](std::uint32_t slot) { return island_root(slot); };
     // A body's sleep clock runs while it is slow or stays within `reach` of its pose when the
