@@ -381,10 +381,11 @@ void workers_table(unsigned workers, bool quick) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false;
+    bool quick = false, piles = false;
     unsigned workers = 0;
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+        else if (std::strcmp(argv[i], "--piles") == 0) piles = true;
         else if (std::strcmp(argv[i], "--workers") == 0 && i + 1 < argc) {
             const long n = std::strtol(argv[++i], nullptr, 10);
             if (n < 2 || n > 256) {
@@ -393,7 +394,9 @@ int main(int argc, char** argv) {
             }
             workers = static_cast<unsigned>(n);
         } else if (std::strcmp(argv[i], "--help") == 0) {
-            std::printf("usage: xeno_step_bench [--quick] [--workers N]\n");
+            std::printf(
+                "usage: xeno_step_bench [--quick] [--workers N] [--piles]\n"
+                "  --piles: only the dropped piles of 500 to 4,000 boxes, stepped until they sleep (docs/features.md)\n");
             return 0;
         } else {
             std::fprintf(stderr, "xeno_step_bench: unknown option '%s' (try --help)\n", argv[i]);
@@ -402,6 +405,10 @@ int main(int argc, char** argv) {
     }
     if (workers > 0) {
         workers_table(workers, quick);
+        return 0;
+    }
+    if (piles) {  // how long dropped piles take to fall asleep (docs/features.md, "Rocking in place")
+        for (int n : {500, 1000, 2000, 4000}) sleep_row<float>(n, false);
         return 0;
     }
     const int steps = quick ? 60 : 600;  // 10 s at 60 Hz

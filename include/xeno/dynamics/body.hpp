@@ -100,6 +100,9 @@ public:
     Transform<T> child_transform(std::uint32_t i) const {
         return compound() ? transform() * compound()->children()[i].local : transform();
     }
+    /// m: the radius about the centre of mass of a ball holding every part (convex and compound
+    /// bodies; a mesh body has none).
+    T bounding_radius() const { return compound() ? compound()->bounding_radius() : xeno::bounding_radius(*convex_shape()); }
     /// World bounding box of the whole body (every part).
     Aabb<T> world_bounds() const {
         if (mesh()) return xeno::world_bounds(*mesh(), transform());
@@ -235,6 +238,7 @@ private:
     // rocks in place above the sleep speeds but stays near it still counts as resting.
     Vec3<T> rest_position_{};
     Quat<T> rest_orientation_ = Quat<T>::identity();
+    T distance_from_rest() const;
     T density_{};  ///< kg/m³, for mass recomputed after a change of shape or type
     std::uint64_t user_data_{};
     std::uint32_t generation_ = 0;  ///< matches BodyId::generation while the body lives
@@ -250,6 +254,18 @@ private:
     bool moved_ = false;     ///< teleported since the last step (broad phase must see it)
     Geometry geometry_kind_ = Geometry::convex;
 };
+
+// How far any point of the body is from where it was when its sleep clock started: the centre's
+// move plus the chord its turn sweeps at the bounding radius, 2 r sin(θ/2), which is 2 r times
+// the length of the vector part of the relative rotation. World::update_sleep compares it with
+// the distance the sleep speed covers in the sleep time, so that a body that rocks or swings in
+// place (small amplitude, speeds above the thresholds) sleeps, as Jolt's three-point test does.
+template <class T>
+T Body<T>::distance_from_rest() const {
+    const Quat<T> turn = conjugate(rest_orientation_) * orientation_;
+    const T chord = T(2) * std::sqrt(turn.x * turn.x + turn.y * turn.y + turn.z * turn.z);
+    return length(position_ - rest_position_) + chord * bounding_radius();
+}
 
 template <class T>
 void Body<T>::accumulate(const Vec3<T>& force, const Vec3<T>& torque, const char* where) {
@@ -400,7 +416,7 @@ void Body<T>::set_mass_properties(const MassProperties<T>& m) {
     const char* where = "Body::set_mass_properties";
     if (type_ != BodyType::dynamic)
         detail::report_invalid(where, "only dynamic bodies have mass; body type", static_cast<double>(type_));
-    detail::check_mass_properties(m, compound() ? compound()->bounding_radius() : bounding_radius(*convex_shape()), where);
+    detail::check_mass_properties(m, bounding_radius(), where);
     inverse_mass_ = T(1) / m.mass;
     inertia_local_ = m.inertia;
     const T mean = trace(m.inertia) / T(3);

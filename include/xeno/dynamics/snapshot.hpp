@@ -428,7 +428,7 @@ template <class T>
 void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
     const Body<T>& b = w.bodies_[slot];
     const auto bad = [slot](const char* what) { detail::report_corrupt(what, slot); };
-    const T radius = b.compound() ? b.compound()->bounding_radius() : bounding_radius(*b.convex_shape());
+    const T radius = b.bounding_radius();
     if (b.convex_shape() && length(interior_point(*b.convex_shape())) > T(1e-4) * radius)
         bad("a body's shape is not centred on its centre of mass; body slot");
     if (!is_finite(b.position_) || !detail::unit_quat(b.orientation_))
@@ -489,7 +489,7 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
     };
     const auto reach = [&](std::uint32_t slot) {  // Δv at any point of the body per N·s (1/kg)
         const Body<T>& b = w.bodies_[slot];
-        const T r = b.compound() ? b.compound()->bounding_radius() : bounding_radius(*b.convex_shape());
+        const T r = b.bounding_radius();
         return b.inverse_mass_ + inv_inertia(slot) * r * r;
     };
     const auto linear_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) {

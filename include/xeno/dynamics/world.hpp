@@ -532,7 +532,6 @@ private:
     void finish();
     void discard_overflowed_solve();
     void update_sleep(T dt);
-    T moved_from_rest(const Body<T>& b) const;
     void update_query_tree();
     void rebuild_query_tree();
     /// A tree grown by edits queries several times slower than a built one (measured 5x at
@@ -1956,19 +1955,6 @@ void World<T>::discard_overflowed_solve() {
     }
 }
 
-// How far any point of a body is from where it was when its sleep clock started: the centre's
-// move plus the chord its turn sweeps at the bounding radius, 2 r sin(θ/2), which is 2 r times
-// the length of the vector part of the relative rotation. Compared with the distance the sleep
-// speed covers in the sleep time, this lets a body that rocks or swings in place (small
-// amplitude, speeds above the thresholds) sleep, as Jolt's three-point sleep test does.
-template <class T>
-T World<T>::moved_from_rest(const Body<T>& b) const {
-    const Quat<T> turn = conjugate(b.rest_orientation_) * b.orientation_;
-    const T chord = T(2) * std::sqrt(turn.x * turn.x + turn.y * turn.y + turn.z * turn.z);
-    const T radius = b.compound() ? b.compound()->bounding_radius() : bounding_radius(*b.convex_shape());
-    return length(b.position_ - b.rest_position_) + chord * radius;
-}
-
 template <class T>
 void World<T>::update_sleep(T dt) {
     if (!settings_.allow_sleeping) return;
@@ -1979,7 +1965,7 @@ void World<T>::update_sleep(T dt) {
     build_islands();
     auto find = [&](std::uint32_t slot) { return island_root(slot); };
     // A body's sleep clock runs while it is slow or stays within `reach` of its pose when the
-    // clock started (moved_from_rest); an island sleeps when all its clocks passed sleep_time and
+    // clock started (Body::distance_from_rest); an island sleeps when all its clocks passed sleep_time and
     // none refuses to sleep or touches a moving kinematic body.
     const T lin_sq = settings_.sleep_linear_speed * settings_.sleep_linear_speed;
     const T ang_sq = settings_.sleep_angular_speed * settings_.sleep_angular_speed;
@@ -1994,7 +1980,7 @@ void World<T>::update_sleep(T dt) {
         // Near its rest pose but faster than the sleep speeds, the clock runs at a quarter rate,
         // so such a body sleeps after 4 × sleep_time: one still settling (a rock rocking onto a
         // face, at 5 cm/s and 0.24 rad/s when it slept at full rate) gets time to come to rest.
-        const T rate = slow ? T(1) : moved_from_rest(b) <= reach ? T(0.25) : T(0);
+        const T rate = slow ? T(1) : b.distance_from_rest() <= reach ? T(0.25) : T(0);
         b.sleep_time_ = (rate > T(0) && b.allow_sleep_) ? b.sleep_time_ + rate * dt : T(0);
         const std::uint32_t root = find(i);
         island_min[root] = std::min(island_min[root], b.sleep_time_);
