@@ -49,7 +49,8 @@ configure_and_test() {  # name, extra cmake args...
 
 # Every public header compiled alone (XENO_BUILD_HEADER_CHECK) is proved once, in step 2: both
 # compilers read the same standard library, and the tests include every header under both.
-# The benchmarks are built to prove they compile and link, not run: at -O0 (bench/CMakeLists.txt).
+# The benchmarks (and the examples no test runs) are compiled to prove they compile, not run: front
+# end only (XENO_COMPILE_CHECK_ONLY, CMakeLists.txt), not linked.
 gcc_flags=(-DCMAKE_CXX_COMPILER=g++ "-DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG" -DXENO_BUILD_HEADER_CHECK=OFF
            -DXENO_COMPILE_CHECK_ONLY=ON)
 if [[ "${XENO_TEST_QUICK:-0}" == 1 ]]; then
