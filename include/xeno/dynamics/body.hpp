@@ -409,6 +409,31 @@ void check_mass_properties(const MassProperties<T>& m, T radius, const char* whe
         report_invalid(where, "inertia must be finite, symmetric and positive definite (with a finite inverse); Ixx",
                        static_cast<double>(i[0].x));
 }
+
+/// Whether `body`'s part `child` is a sphere (a mesh body's "part" is a triangle: never).
+template <class T>
+bool is_sphere(const Body<T>& body, std::uint32_t child) {
+    return !body.mesh() && std::holds_alternative<Sphere<T>>(body.child_shape(child));
+}
+
+/// m: the radius of the rounded surface by which `body`'s part `child` touches along the contact
+/// normal `n` (ContactConstraint::round_a and round_b; why: rolling_rise in
+/// wide_contact_solver.hpp). A sphere and a capsule are a point and a segment swept by a ball:
+/// their radius, whichever way they turn. A cylinder is round about its axis only: its radius on
+/// its side (n within 3° of perpendicular to the axis), where it rolls, and 0 on its caps and
+/// rims. 0 for hulls, boxes, cones (a cone's roundness varies along its side) and meshes.
+template <class T>
+T rolling_radius(const Body<T>& body, std::uint32_t child, const Vec3<T>& n) {
+    if (body.mesh()) return T(0);
+    const Shape<T>& shape = body.child_shape(child);
+    if (const auto* sphere = std::get_if<Sphere<T>>(&shape)) return sphere->radius();
+    if (const auto* capsule = std::get_if<Capsule<T>>(&shape)) return capsule->radius();
+    if (const auto* cylinder = std::get_if<Cylinder<T>>(&shape)) {
+        const Vec3<T> axis = body.child_transform(child).apply_direction(Vec3<T>::unit_y());
+        return std::abs(dot(axis, n)) <= T(0.05) ? cylinder->radius() : T(0);
+    }
+    return T(0);
+}
 }  // namespace detail
 
 template <class T>

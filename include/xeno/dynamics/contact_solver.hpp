@@ -60,6 +60,10 @@ struct ContactConstraint {
     T k11{}, k12{}, k22{};                           ///< inverse of the 2×2 tangent effective-mass matrix
     T friction_1{}, friction_2{};                    ///< N·s per substep along t1, t2
     T twist_mass{}, twist_impulse{}, twist_lever{};  ///< kg·m², N·m·s, m (mean lever of the points)
+    /// m: the radius of each side's rounded surface at the contact (a sphere, a capsule, a
+    /// cylinder's side; 0 for flat faces and edges). Such a surface rolls: its contact point stays
+    /// at the bottom instead of turning with the body (rolling_rise in wide_contact_solver.hpp).
+    T round_a{}, round_b{};
 };
 
 /// What one solver pass needs to know.
