@@ -11,7 +11,8 @@
 //            once (polytopes, cylinder caps, cone bases, capsule and cylinder sides): the points
 //            are replaced, and each new point inherits the impulse of the old point whose body-
 //            local anchor lies within the match distance (each old point donates once);
-//   gradual  the narrow phase returned one point (spheres, rounded ends, rims, edges): the thesis
+//   gradual  the narrow phase returned one point (rounded ends, rims, edges; a sphere's one point
+//            replaces its manifold instead: World::make_contact says why): the thesis
 //            way. Old points are re-measured from their body-local anchors and dropped when they
 //            separated beyond the margin or slid apart tangentially (Quadro 16); the new point
 //            updates a close old one or is added; with five, the deepest stays and the four that
