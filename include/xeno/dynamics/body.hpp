@@ -419,9 +419,11 @@ bool is_sphere(const Body<T>& body, std::uint32_t child) {
 /// m: the radius of the rounded surface by which `body`'s part `child` touches along the contact
 /// normal `n` (ContactConstraint::round_a and round_b; why: rolling_rise in
 /// wide_contact_solver.hpp). A sphere and a capsule are a point and a segment swept by a ball:
-/// their radius, whichever way they turn. A cylinder is round about its axis only: its radius on
-/// its side (n within 3° of perpendicular to the axis), where it rolls, and 0 on its caps and
-/// rims. 0 for hulls, boxes, cones (a cone's roundness varies along its side) and meshes.
+/// their radius, whichever way they turn. A cylinder is round about its axis only: r |n⊥|, with
+/// n⊥ the part of n across the axis. On its side (n ⊥ axis) that is r, exact for rolling about
+/// the axis; on a cap (n ∥ axis) 0, where it spins or tips as a flat face; on a rim between them
+/// (a leaning wheel) it takes back part of the rise, and it changes continuously as the wheel
+/// leans. 0 for hulls, boxes, cones (a cone's roundness varies along its side) and meshes.
 template <class T>
 T rolling_radius(const Body<T>& body, std::uint32_t child, const Vec3<T>& n) {
     if (body.mesh()) return T(0);
@@ -429,8 +431,9 @@ T rolling_radius(const Body<T>& body, std::uint32_t child, const Vec3<T>& n) {
     if (const auto* sphere = std::get_if<Sphere<T>>(&shape)) return sphere->radius();
     if (const auto* capsule = std::get_if<Capsule<T>>(&shape)) return capsule->radius();
     if (const auto* cylinder = std::get_if<Cylinder<T>>(&shape)) {
-        const Vec3<T> axis = body.child_transform(child).apply_direction(Vec3<T>::unit_y());
-        return std::abs(dot(axis, n)) <= T(0.05) ? cylinder->radius() : T(0);
+        const T along = dot(body.child_transform(child).apply_direction(Vec3<T>::unit_y()), n);
+        const T across_sq = T(1) - along * along;
+        return across_sq > T(1e-6) ? cylinder->radius() * std::sqrt(across_sq) : T(0);  // a cap: exactly 0
     }
     return T(0);
 }
