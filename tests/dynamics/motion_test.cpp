@@ -202,6 +202,31 @@ TEST_CASE_TEMPLATE("a ball, a capsule and a cylinder rolling at 10 m/s keep thei
     }
 }
 
+// Friction turns a slide into rolling: the angular momentum about the contact line is kept, so a
+// body launched sliding without spin rolls on at v0 / (1 + I / (m r²)) (5/7 v0 for a ball, 2/3
+// for a cylinder), reached after (v0 − v) / (µ g).
+TEST_CASE_TEMPLATE("a ball and a cylinder launched sliding roll on at 5/7 and 2/3 of their speed", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    for (const Roller kind : {Roller::ball, Roller::cylinder}) {
+        CAPTURE(static_cast<int>(kind));
+        World<T> w(C::settings());
+        scenes::add_ground(w, T(200), T(0.3));
+        BodyDef<T> def;
+        def.position = {T(-100), T(0.5), T(0)};
+        def.linear_velocity = {T(6), T(0), T(0)};
+        def.material.friction = T(0.3);
+        const BodyId id = add_roller(w, kind, def, Quat<T>::from_axis_angle(Vec3<T>::unit_x(), radians(T(90))));
+        const double expected = 6.0 * rolling_fraction(kind);
+        const double rolls_at = (6.0 - expected) / (0.3 * 9.81);  // s
+        simulate(w, T(rolls_at + 1.0));
+        const Body<T>& b = w.body(id);
+        CAPTURE(b.linear_velocity().x);
+        CHECK(std::abs(double(b.linear_velocity().x) - expected) <= 1e-3 * expected);
+        // and it rolls: the contact point is at rest
+        CHECK(std::abs(b.linear_velocity().x + b.angular_velocity().z * T(0.5)) <= T(1e-3) * b.linear_velocity().x);
+    }
+}
+
 TEST_CASE_TEMPLATE("a box dropped from h with restitution e bounces to e^2 h within 5 %", C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
     const T h = T(2), e = T(0.6);
