@@ -85,6 +85,13 @@ TEST_CASE_TEMPLATE("restore_snapshot rejects each corruption seen, leaving the w
         "contact normal NaN");
     bad(at.contacts + member_offset(contact, contact.made_normal.y), T(3), "contact made normal not unit");
     bad(at.contacts + member_offset(contact, contact.made_turn.w), std::numeric_limits<T>::quiet_NaN(), "contact made turn NaN");
+    // The twist lever kept under its points' key: NaN, negative, or not the one the points give
+    // (the next step would use it as it is).
+    bad(at.contacts + member_offset(contact, contact.twist_lever), std::numeric_limits<T>::quiet_NaN(), "twist lever NaN");
+    bad(at.contacts + member_offset(contact, contact.twist_lever), T(-1), "twist lever negative");
+    REQUIRE(s.w.contacts()[0].twist_lever_key != 0);
+    bad(at.contacts + member_offset(contact, contact.twist_lever), s.w.contacts()[0].twist_lever + T(0.25),
+        "twist lever not its points'");
     // Settings: an iteration count that makes a step never end, bool bytes, enum values.
     bad(at.settings + member_offset(settings, settings.velocity_iterations), 33554433, "33,554,433 iterations");
     bad(at.settings + member_offset(settings, settings.substeps), 0, "no substeps");

@@ -416,26 +416,39 @@ bool is_sphere(const Body<T>& body, std::uint32_t child) {
     return !body.mesh() && std::holds_alternative<Sphere<T>>(body.child_shape(child));
 }
 
-/// m: the radius of the rounded surface by which `body`'s part `child` touches along the contact
-/// normal `n` (ContactConstraint::round_a and round_b; why: rolling_rise in
-/// wide_contact_solver.hpp). A sphere and a capsule are a point and a segment swept by a ball:
-/// their radius, whichever way they turn. A cylinder is round about its axis only: r |n⊥|, with
-/// n⊥ the part of n across the axis. On its side (n ⊥ axis) that is r, exact for rolling about
-/// the axis; on a cap (n ∥ axis) 0, where it spins or tips as a flat face; on a rim between them
-/// (a leaning wheel) it takes back part of the rise, and it changes continuously as the wheel
-/// leans. 0 for hulls, boxes, cones (a cone's roundness varies along its side) and meshes.
+/// How `body`'s part `child` is round where it touches along the contact normal `n`, read once
+/// per manifold (World::contact_row).
 template <class T>
-T rolling_radius(const Body<T>& body, std::uint32_t child, const Vec3<T>& n) {
-    if (body.mesh()) return T(0);
+struct Roundness {
+    /// m: the radius of the rounded surface it rolls on (ContactConstraint::round_a and round_b;
+    /// why: rolling_rise in wide_contact_solver.hpp). A sphere and a capsule are a point and a
+    /// segment swept by a ball: their radius, whichever way they turn. A cylinder is round about
+    /// its axis only: r |n⊥|, with n⊥ the part of n across the axis. On its side (n ⊥ axis) that
+    /// is r, exact for rolling about the axis; on a cap (n ∥ axis) 0, where it spins or tips as a
+    /// flat face; on a rim between them (a leaning wheel) it takes back part of the rise, and it
+    /// changes continuously as the wheel leans. 0 for hulls, boxes, cones (a cone's roundness
+    /// varies along its side) and meshes.
+    T rolling{};
+    /// m: the radius of the flat round face it rests on (a cylinder's cap, a cone's base: the
+    /// axis along n), else 0. Such a face rests as a disc, whose twist lever is 2r/3
+    /// (contact/patch.hpp; World::twist_lever).
+    T face{};
+};
+
+template <class T>
+Roundness<T> roundness(const Body<T>& body, std::uint32_t child, const Vec3<T>& n) {
+    if (body.mesh()) return {};
     const Shape<T>& shape = body.child_shape(child);
-    if (const auto* sphere = std::get_if<Sphere<T>>(&shape)) return sphere->radius();
-    if (const auto* capsule = std::get_if<Capsule<T>>(&shape)) return capsule->radius();
-    if (const auto* cylinder = std::get_if<Cylinder<T>>(&shape)) {
-        const T along = dot(body.child_transform(child).apply_direction(Vec3<T>::unit_y()), n);
-        const T across_sq = T(1) - along * along;
-        return across_sq > T(1e-6) ? cylinder->radius() * std::sqrt(across_sq) : T(0);  // a cap: exactly 0
-    }
-    return T(0);
+    if (const auto* sphere = std::get_if<Sphere<T>>(&shape)) return {sphere->radius(), T(0)};
+    if (const auto* capsule = std::get_if<Capsule<T>>(&shape)) return {capsule->radius(), T(0)};
+    const auto* cylinder = std::get_if<Cylinder<T>>(&shape);
+    const auto* cone = std::get_if<Cone<T>>(&shape);
+    if (!cylinder && !cone) return {};
+    const T along = dot(body.child_transform(child).apply_direction(Vec3<T>::unit_y()), n);
+    const T across_sq = T(1) - along * along;
+    const bool on_face = !(across_sq > T(1e-6));
+    if (cone) return {T(0), on_face ? cone->radius() : T(0)};
+    return on_face ? Roundness<T>{T(0), cylinder->radius()} : Roundness<T>{cylinder->radius() * std::sqrt(across_sq), T(0)};
 }
 }  // namespace detail
 

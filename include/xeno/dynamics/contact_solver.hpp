@@ -17,7 +17,8 @@
 //   relax pass           bias 0, rigid: removes the bias velocity before positions are final, so
 //                        overlap recovery adds no kinetic energy.
 // Then λ_total = max(λ_total + Δλ, 0) on the accumulated impulse (never the increment).
-// Friction: |λ_t| ≤ µ Σ λ_n on the 2-vector (a disc, not a square); twist: |λ_τ| ≤ µ Σ ℓ_i λ_n,i.
+// Friction: |λ_t| ≤ µ Σ λ_n on the 2-vector (a disc, not a square); twist: |λ_τ| ≤ µ ℓ Σ λ_n, with ℓ
+// the patch's mean radius (contact/patch.hpp).
 // Restitution: after the substeps, rows that approached faster than the threshold before the
 // step and carried impulse get the target v_n = −e v_n⁻ (velocity captured before gravity was
 // added, so restitution adds no energy).
@@ -59,7 +60,7 @@ struct ContactConstraint {
     Vec3<T> rc_a{}, rc_b{};                          ///< m, centres of mass to the patch centre
     T k11{}, k12{}, k22{};                           ///< inverse of the 2×2 tangent effective-mass matrix
     T friction_1{}, friction_2{};                    ///< N·s per substep along t1, t2
-    T twist_mass{}, twist_impulse{}, twist_lever{};  ///< kg·m², N·m·s, m (mean lever of the points)
+    T twist_mass{}, twist_impulse{}, twist_lever{};  ///< kg·m², N·m·s, m (the patch's mean radius, World::twist_lever)
     /// m: the radius of each side's rounded surface at the contact (a sphere, a capsule, a
     /// cylinder's side; 0 for flat faces and edges). Such a surface rolls: its contact point stays
     /// at the bottom instead of turning with the body (rolling_rise in wide_contact_solver.hpp).

@@ -122,11 +122,12 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 6;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
+constexpr std::uint32_t kSnapshotVersion = 7;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
                                                       // the last substep, prismatic and swing-twist joints; 4: the
                                                       // pose each contact's manifold was made at,
                                                       // WorldSettings::reuse_contacts; 5: static_contact_damping_ratio,
-                                                      // first_relax_iterations; 6: each body's rest pose
+                                                      // first_relax_iterations; 6: each body's rest pose;
+                                                      // 7: each contact's twist lever and its key
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {
@@ -561,6 +562,14 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
         ok = ok && is_finite(c.made_offset) && detail::unit_quat(c.made_turn) && is_finite(c.made_normal) &&
              (m.count == 0 || detail::unit_vector(c.made_normal));
         if (!ok) detail::report_corrupt("a contact's normal, points, impulses or material are out of range; contact", k);
+        // The twist lever kept under its key (World::twist_lever) must be the one the points
+        // give: the next step uses it without integrating the patch again.
+        std::array<Vec3<T>, 4> anchors{};
+        for (std::size_t i = 0; i < static_cast<std::size_t>(m.count); ++i) anchors[i] = m.points[i].local_a;
+        if (!(std::isfinite(c.twist_lever) && c.twist_lever >= T(0)) ||
+            (c.twist_lever_key == detail::patch_key(anchors, m.count) &&
+             !(c.twist_lever == detail::patch_twist_lever(anchors, m.count))))
+            detail::report_corrupt("a contact's twist lever is not the one its points give; contact", k);
     }
     // Joints: types, bools, living distinct bodies, finite frames; free joints = dead joints.
     const std::size_t nj = w.joints_.size();

@@ -66,7 +66,7 @@ struct WideContact {
     WidePoint<V> points[4];
     WideVec3<V> a1, a2, b1, b2;  ///< rc × t1, rc × t2 for A and B
     V k11, k12, k22, friction_1, friction_2;
-    V twist_mass, twist_impulse, twist_friction;  ///< twist_friction: µ × the mean lever
+    V twist_mass, twist_impulse, twist_friction;  ///< twist_friction: µ × the patch's mean radius
     V round_a, round_b;                           ///< radii of the rounded surfaces (ContactConstraint)
 };
 

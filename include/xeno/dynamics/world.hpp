@@ -34,6 +34,7 @@
 #include "../collide/raycast.hpp"
 #include "../collide/shape_cast.hpp"
 #include "../contact/manifold.hpp"
+#include "../contact/patch.hpp"
 #include "../task_system.hpp"
 #include "body.hpp"
 #include "contact_solver.hpp"
@@ -73,6 +74,13 @@ struct Contact {
     Vec3<T> made_offset{};                    ///< m, B's centre of mass in A's body frame
     Quat<T> made_turn = Quat<T>::identity();  ///< B's orientation relative to A's
     Vec3<T> made_normal{};                    ///< unit, the normal in A's body frame
+    // The twist-friction lever of the polygon the points span (contact/patch.hpp; a round face
+    // resting whole uses 2r/3 instead: World::twist_lever), computed from the points' anchors on
+    // A and kept while they stay: a manifold re-measured step after step (a stack at rest) does
+    // not integrate its patch again. The key is a digest of those anchors, 0 before the first
+    // solve.
+    T twist_lever{};  ///< m
+    std::uint64_t twist_lever_key = 0;
 };
 
 enum class ContactEventKind { began, persisted, ended };
@@ -520,7 +528,8 @@ private:
     bool within_slop(const Contact<T>& c) const;
     void prepare(T dt);
     detail::ContactConstraint<T> contact_row(std::uint32_t m, const detail::Softness<T>& soft,
-                                             const detail::Softness<T>& soft_static) const;
+                                             const detail::Softness<T>& soft_static);
+    static T twist_lever(Contact<T>& contact, T face_a, T face_b);
     void share_support_stiffness(T static_hertz, T h);
     /// Fewest items a worker is handed per stage (task_system.hpp): about a few µs of work each.
     static constexpr std::uint32_t bounds_range = 256, row_range = 64, integrate_range = 256, finish_range = 256;
@@ -1737,8 +1746,8 @@ void World<T>::share_support_stiffness(T static_hertz, T h) {
 /// approach speed for restitution, from the bodies' state at the start of the step.
 template <class T>
 detail::ContactConstraint<T> World<T>::contact_row(std::uint32_t m, const detail::Softness<T>& soft,
-                                                   const detail::Softness<T>& soft_static) const {
-    const Contact<T>& contact = contacts_[m];
+                                                   const detail::Softness<T>& soft_static) {
+    Contact<T>& contact = contacts_[m];
     const Body<T>& a = bodies_[contact.a.index];
     const Body<T>& b = bodies_[contact.b.index];
     detail::ContactConstraint<T> c;
@@ -1779,12 +1788,6 @@ detail::ContactConstraint<T> World<T>::contact_row(std::uint32_t m, const detail
     centre /= static_cast<T>(c.count);
     c.rc_a = centre - xa;
     c.rc_b = centre - xb;
-    T lever = T(0);
-    for (int i = 0; i < c.count; ++i) {
-        const Vec3<T> off = (c.points[static_cast<std::size_t>(i)].r_a + xa) - centre;
-        lever += length(off - c.normal * dot(off, c.normal));
-    }
-    c.twist_lever = lever / static_cast<T>(c.count);
     // The 2×2 tangent effective mass K and its inverse.
     const Vec3<T> a1 = cross(c.rc_a, c.t1), a2 = cross(c.rc_a, c.t2), b1 = cross(c.rc_b, c.t1), b2 = cross(c.rc_b, c.t2);
     const T base = sa.inv_mass + sb.inv_mass;
@@ -1799,14 +1802,45 @@ detail::ContactConstraint<T> World<T>::contact_row(std::uint32_t m, const detail
     }
     const T kt = dot(c.normal, (sa.inv_inertia + sb.inv_inertia) * c.normal);
     c.twist_mass = kt > T(0) ? T(1) / kt : T(0);
-    c.round_a = detail::rolling_radius(a, contact.child_a, c.normal);
-    c.round_b = detail::rolling_radius(b, contact.child_b, c.normal);
+    const detail::Roundness<T> round_a = detail::roundness(a, contact.child_a, c.normal);
+    const detail::Roundness<T> round_b = detail::roundness(b, contact.child_b, c.normal);
+    c.round_a = round_a.rolling;
+    c.round_b = round_b.rolling;
+    c.twist_lever = twist_lever(contact, round_a.face, round_b.face);
     if (settings_.warm_starting) {
         c.friction_1 = dot(contact.manifold.friction_impulse, c.t1);
         c.friction_2 = dot(contact.manifold.friction_impulse, c.t2);
         c.twist_impulse = contact.manifold.twist_impulse;
     }
     return c;
+}
+
+/// m: the lever ℓ of a manifold's twist friction, µ ℓ Σλ_n, under a uniform pressure over its
+/// patch (contact/patch.hpp): the polygon its points' anchors on A span, kept in the contact
+/// while they stay, or the whole of a round face (a cylinder's cap, a cone's base, of radius
+/// face_a or face_b) when the points lie on that face's rim: four points kept of the rim's
+/// polygon span a square of 0.81 times the disc's lever.
+template <class T>
+T World<T>::twist_lever(Contact<T>& contact, T face_a, T face_b) {
+    const Manifold<T>& m = contact.manifold;
+    std::array<Vec3<T>, 4> anchors{};
+    for (std::size_t i = 0; i < static_cast<std::size_t>(m.count); ++i) anchors[i] = m.points[i].local_a;
+    const T face = face_a > T(0) && face_b > T(0) ? std::min(face_a, face_b) : std::max(face_a, face_b);
+    if (m.count >= 3 && face > T(0)) {
+        Vec3<T> centre{};
+        for (std::size_t i = 0; i < static_cast<std::size_t>(m.count); ++i) centre += anchors[i];
+        centre /= static_cast<T>(m.count);
+        bool on_rim = true;
+        for (std::size_t i = 0; i < static_cast<std::size_t>(m.count); ++i)
+            on_rim = on_rim && length_squared(anchors[i] - centre) >= T(0.81) * face * face;
+        if (on_rim) return T(2) / T(3) * face;
+    }
+    const std::uint64_t key = detail::patch_key(anchors, m.count);
+    if (key != contact.twist_lever_key) {
+        contact.twist_lever = detail::patch_twist_lever(anchors, m.count);
+        contact.twist_lever_key = key;
+    }
+    return contact.twist_lever;
 }
 
 /// What integrating body `b` (solver state `s`) over substeps of h needs, constant for the step:
