@@ -37,7 +37,7 @@ namespace detail {
 /// One contact point's row, world frame, rebuilt every step.
 template <class T>
 struct ContactConstraintPoint {
-    Vec3<T> r_a{}, r_b{};     ///< m, from each centre of mass to the contact point
+    Vec3<T> r_a{}, r_b{};     ///< m, from each centre of mass to its anchor of the point
     T adjusted_separation{};  ///< m: s0 − n·(r_b − r_a), so s = n·(Δ of the anchors) + this
     T normal_mass{};          ///< kg: 1 / (n row's effective inverse mass)
     T normal_impulse{};       ///< N·s per substep, accumulated

@@ -480,6 +480,9 @@ private:
     void merge_mesh_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, const MeshManifolds& fresh,
                          std::vector<Contact<T>>& next);
     /// `out` from a fresh manifold of parts ca and cb, its points matched to `had` (or nullptr).
+    ContactManifold<T> at_first_touch(const Body<T>& a, std::uint32_t ca, const Transform<T>& pose_a, const Body<T>& b,
+                                      std::uint32_t cb, const Transform<T>& pose_b, const ContactManifold<T>& now, T margin,
+                                      T dt) const;
     void make_contact(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, const Contact<T>* had,
                       const ContactManifold<T>& fresh, Contact<T>& out) const;
     /// How far apart a pair's contacts may begin: the speculative distance plus what the two can
@@ -1310,11 +1313,61 @@ typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, s
             return PartsContact::apart;
     }
     if (had && reuse_contact(pair, margin, dt, *had, out)) return PartsContact::reused;
-    const ContactManifold<T> fresh =
+    const ContactManifold<T> now =
         generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin, settings_.linear_slop);
-    if (fresh.count == 0) return PartsContact::apart;
-    make_contact(pair, ca, cb, margin, had, fresh, out);
+    if (now.count == 0) return PartsContact::apart;
+    make_contact(pair, ca, cb, margin, had, at_first_touch(a, ca, pose_a, b, cb, pose_b, now, margin, dt), out);
     return PartsContact::made;
+}
+
+/// Speculative contacts of a ball meet where the parts will touch, not where they are closest
+/// now. A ball and a part apart by more than the slop and moving towards each other by more than
+/// their gap within two steps are swept along their relative translation (shape_cast; turning is
+/// left out) to the first touch, collided there, and the manifold found there is moved back by each body's
+/// travel: its normal and points are those of the impact, its depths the gaps along that normal
+/// now. The manifold of closest features instead holds a normal that turns as the bodies close:
+/// two balls meeting off-centre at 10 m/s left at 62° instead of 72° (a quarter of a diameter
+/// apart at the start of the step), and the ball struck took 50 % too much momentum. Without
+/// a touch within two steps (they pass, or the sweep starts overlapping) `now` is kept.
+template <class T>
+ContactManifold<T> World<T>::at_first_touch(const Body<T>& a, std::uint32_t ca, const Transform<T>& pose_a, const Body<T>& b,
+                                            std::uint32_t cb, const Transform<T>& pose_b, const ContactManifold<T>& now, T margin,
+                                            T dt) const {
+    T deepest = -ScalarTraits<T>::infinity;
+    for (int i = 0; i < now.count; ++i) deepest = std::max(deepest, now.points[static_cast<std::size_t>(i)].depth);
+    // Two steps ahead: the relax pass after a step's last substep already answers a touch due in
+    // the next substep (the gap it would close then), with the normal of this step's manifold.
+    const T horizon = T(2) * dt;
+    const Vec3<T> travel_a = a.linear_velocity_ * horizon, travel_b = b.linear_velocity_ * horizon;
+    const Vec3<T> relative = travel_a - travel_b;
+    const T gap = -deepest;
+    if (!(gap > settings_.linear_slop) || !(length_squared(relative) > gap * gap)) return now;
+    // A ball on one side: the sweep is exact for it, whichever way it turns. Between other
+    // shapes a ragdoll, swept the same way whenever its limbs turned slowly, landed further past
+    // its cones (median of 20 runs 1.42° against 1.17°, worst 5.0° against 3.4°): left for later.
+    if (!detail::is_sphere(a, ca) && !detail::is_sphere(b, cb)) return now;
+    // The sweep leaves turning out: only while turning moves the surfaces by less than a quarter
+    // of the gap (a ball turns without moving its surface; what it strikes may spin).
+    const auto turning = [&](const Body<T>& body, std::uint32_t child) {
+        const T reach = detail::is_sphere(body, child) ? length(body.child_transform(child).position - body.position_)
+                                                       : body.bounding_radius();
+        return length(body.angular_velocity_) * reach * horizon;
+    };
+    if (!(turning(a, ca) + turning(b, cb) <= T(0.25) * gap)) return now;
+    const std::optional<ShapeCastHit<T>> hit = xeno::shape_cast(a.child_shape(ca), pose_a, relative, b.child_shape(cb), pose_b);
+    if (!hit || hit->initially_overlapping) return now;
+    const Vec3<T> shift_a = travel_a * hit->fraction, shift_b = travel_b * hit->fraction;
+    ContactManifold<T> touch =
+        generate_contacts(a.child_shape(ca), {pose_a.position + shift_a, pose_a.orientation}, b.child_shape(cb),
+                          {pose_b.position + shift_b, pose_b.orientation}, margin, settings_.linear_slop);
+    if (touch.count == 0) return now;
+    for (int i = 0; i < touch.count; ++i) {
+        ManifoldPoint<T>& p = touch.points[static_cast<std::size_t>(i)];
+        p.point_a -= shift_a;
+        p.point_b -= shift_b;
+        p.depth = dot(p.point_a - p.point_b, touch.normal);
+    }
+    return touch;
 }
 
 template <class T>
@@ -1772,10 +1825,13 @@ detail::ContactConstraint<T> World<T>::contact_row(std::uint32_t m, const detail
         const ContactPoint<T>& cp = contact.manifold.points[static_cast<std::size_t>(i)];
         detail::ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
         const Vec3<T> pa = a.world_point(cp.local_a), pb = b.world_point(cp.local_b);
-        const Vec3<T> mid = (pa + pb) * T(0.5);
-        centre += mid;
-        p.r_a = mid - xa;
-        p.r_b = mid - xb;
+        centre += (pa + pb) * T(0.5);
+        // Each body's lever to its own anchor. For points of closest features pb − pa lies along
+        // n and the levers' n-moments equal those of the midpoint; for points of a first touch
+        // (at_first_touch) the anchors are apart across n by the travel still to come, and a
+        // common point would put a lever across n on a ball struck through its centre.
+        p.r_a = pa - xa;
+        p.r_b = pb - xb;
         const T separation = dot(pb - pa, c.normal);
         p.adjusted_separation = separation - dot(p.r_b - p.r_a, c.normal);
         const Vec3<T> rna = cross(p.r_a, c.normal), rnb = cross(p.r_b, c.normal);
