@@ -157,6 +157,38 @@ TEST_CASE_TEMPLATE("regression: a huge spin or torque on a body in a pile is cap
     }
 }
 
+TEST_CASE_TEMPLATE("regression: a torque that overflows I^-1 tau after the body turns neither blocks a force nor turns into NaN",
+                   T, float, double) {
+    // A rod's inertia about its axis is 5,000 times smaller than across it: a torque across it,
+    // accepted, overflows I⁻¹τ once the rod is turned to lay its axis along the torque. Then
+    // apply_force refused any force for the torque's sake (found by the world fuzzer: it threw
+    // from a force of 100 m g), and a step would have turned inf − inf into NaN. A force accepted
+    // before the body's mass shrank likewise overflows f / m.
+    for (const bool in_pile : {false, true}) {
+        CAPTURE(in_pile);
+        World<T> world;
+        if (in_pile) settled_pile(world);
+        BodyDef<T> def;
+        def.position = {T(0), T(in_pile ? 6 : 0), T(0)};
+        const BodyId rod = world.create_body(Box<T>(T(0.01), T(0.01), T(1)), def);
+        Body<T>& b = world.body(rod);
+        const T across = b.local_inertia()[1].y, along = b.local_inertia()[2].z;
+        REQUIRE(across > T(4000) * along);
+        b.apply_torque({T(0), std::numeric_limits<T>::max() / T(4) * across, T(0)});  // I⁻¹τ = max / 4
+        world.set_transform(rod, def.position, Quat<T>::from_axis_angle(Vec3<T>::unit_x(), radians(T(90))));
+        const Vec3<T> before = b.torque();
+        CHECK_NOTHROW(b.apply_force(Vec3<T>{T(0), T(10), T(0)}));
+        CHECK(b.torque() == before);
+        b.apply_force(Vec3<T>{T(0), std::numeric_limits<T>::max() / T(8) * b.inverse_mass(), T(0)});
+        MassProperties<T> lighter;
+        lighter.mass = b.mass() / T(1000);
+        lighter.inertia = b.local_inertia() * (T(1) / T(1000));
+        b.set_mass_properties(lighter);
+        for (int i = 0; i < 5; ++i) world.step(T(1) / T(60));
+        CHECK(non_finite_bodies(world) == 0);
+    }
+}
+
 // 6. Quaternions of tiny and huge components ------------------------------------------------------
 
 TEST_CASE_TEMPLATE("regression: orientations with tiny or huge components keep their rotation", T, float, double) {

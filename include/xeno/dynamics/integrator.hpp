@@ -12,6 +12,9 @@
 
 #include "solver_body.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace xeno {
 namespace detail {
 
@@ -32,10 +35,23 @@ struct BodyIntegration {
 template <class T>
 Vec3<T> capped_length(const Vec3<T>& v, T limit);
 
+/// m x, or where a component overflows, ±inf with the sign of m (x / s) s (s the largest |x_i|):
+/// an infinite component, never inf − inf = NaN.
+template <class T>
+Vec3<T> product_without_nan(const Mat3<T>& m, const Vec3<T>& x) {
+    const Vec3<T> y = m * x;
+    if (is_finite(y)) return y;
+    const T s = std::max(std::max(std::abs(x.x), std::abs(x.y)), std::abs(x.z));
+    return (m * (x / s)) * s;
+}
+
 /// v += h a, ω += h I⁻¹τ, then the implicit gyroscopic correction and damping.
 template <class T>
 void integrate_velocity(SolverBody<T>& body, const BodyIntegration<T>& in, T h) {
     body.v += in.acceleration * h;
+    // A force accepted with a larger mass may overflow f/m now: cap the speed before the contact
+    // rows see an infinite velocity (integrate_position caps finite speeds).
+    if (!is_finite(body.v)) body.v = detail::capped_length(body.v, in.max_speed);
     body.w += in.angular_impulse_rate * h;
     // A spin far above the cap (a huge torque or set_angular_velocity) would overflow the
     // gyroscopic term and the contact rows before integrate_position caps it: cap it here.

@@ -1906,7 +1906,9 @@ detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, con
     detail::BodyIntegration<T> in;
     in.dynamic = b.type_ == BodyType::dynamic;
     in.acceleration = settings_.gravity * b.gravity_scale_ + b.force_ * b.inverse_mass_;
-    in.angular_impulse_rate = s.inv_inertia * b.torque_;
+    // A torque accepted in one orientation may overflow I⁻¹τ in another: then ±inf per component
+    // (never inf − inf), which integrate_velocity's caps bring back to a finite spin.
+    in.angular_impulse_rate = detail::product_without_nan(s.inv_inertia, b.torque_);
     in.inertia_local = &b.inertia_local_;
     in.orientation0 = b.orientation_;
     in.gyroscopic = !b.isotropic_;
