@@ -169,6 +169,18 @@ BodyId add_roller(World<T>& w, Roller kind, BodyDef<T> def, const Quat<T>& acros
     if (kind == Roller::capsule) return w.create_body(Capsule<T>(r, half), def);
     return w.create_body(Cylinder<T>(r, half), def);
 }
+/// A roller on flat ground of friction mu (its own friction mu too), its axis across x, at x0 with
+/// velocity v along x and spin w about z.
+template <class T>
+BodyId launch_roller(World<T>& w, Roller kind, T mu, T x0, T v, T spin) {
+    scenes::add_ground(w, T(2) * std::abs(x0) + T(100), mu);
+    BodyDef<T> def;
+    def.position = {x0, T(0.5), T(0)};
+    def.linear_velocity = {v, T(0), T(0)};
+    def.angular_velocity = {T(0), T(0), spin};
+    def.material.friction = mu;
+    return add_roller(w, kind, def, Quat<T>::from_axis_angle(Vec3<T>::unit_x(), radians(T(90))));
+}
 double rolling_fraction(Roller kind) {
     const double r = 0.5, half = 0.5, pi = 3.14159265358979323846;
     const double m_cyl = pi * r * r * 2 * half, m_ball = 4.0 / 3.0 * pi * r * r * r;
@@ -227,13 +239,7 @@ TEST_CASE_TEMPLATE("a ball, a capsule and a cylinder rolling at 10 m/s keep thei
     for (const Roller kind : {Roller::ball, Roller::capsule, Roller::cylinder}) {
         CAPTURE(static_cast<int>(kind));
         World<T> w(C::settings());
-        scenes::add_ground(w, T(400), T(0.6));
-        BodyDef<T> def;
-        def.position = {T(-150), T(0.5), T(0)};
-        def.linear_velocity = {T(10), T(0), T(0)};
-        def.angular_velocity = {T(0), T(0), T(-20)};  // rolling: ω r = v
-        def.material.friction = T(0.6);
-        const BodyId id = add_roller(w, kind, def, Quat<T>::from_axis_angle(Vec3<T>::unit_x(), radians(T(90))));
+        const BodyId id = launch_roller(w, kind, T(0.6), T(-150), T(10), T(-20));  // rolling: ω r = v
         T lowest = T(1);
         simulate(w, T(2), [&](int) { lowest = std::min(lowest, w.body(id).position().y); });
         const T speed = w.body(id).linear_velocity().x;
@@ -252,12 +258,7 @@ TEST_CASE_TEMPLATE("a ball and a cylinder launched sliding roll on at 5/7 and 2/
     for (const Roller kind : {Roller::ball, Roller::cylinder}) {
         CAPTURE(static_cast<int>(kind));
         World<T> w(C::settings());
-        scenes::add_ground(w, T(200), T(0.3));
-        BodyDef<T> def;
-        def.position = {T(-100), T(0.5), T(0)};
-        def.linear_velocity = {T(6), T(0), T(0)};
-        def.material.friction = T(0.3);
-        const BodyId id = add_roller(w, kind, def, Quat<T>::from_axis_angle(Vec3<T>::unit_x(), radians(T(90))));
+        const BodyId id = launch_roller(w, kind, T(0.3), T(-100), T(6), T(0));
         const double expected = 6.0 * rolling_fraction(kind);
         const double rolls_at = (6.0 - expected) / (0.3 * 9.81);  // s
         simulate(w, T(rolls_at + 1.0));

@@ -8,14 +8,14 @@
 // mean distance of the patch's area from c. The manifold only holds the patch's corners (at most
 // four), and their mean distance is not ℓ: for a square it is √2 a against
 // (√2 + ln(1 + √2)) a / 3 = 0.765 a, 1.85 times too much, so a box spun on the floor stopped in
-// 0.54 of the time a continuum model (and the textbook) gives. Here the corners span a polygon
+// 0.56 of the time a continuum model (and the textbook) gives. Here the corners span a polygon
 // and ℓ is integrated over it exactly (docs/solver-design.md, "Central friction"):
 //   1 point     0 (a point resists no twist);
 //   2 points    a line of uniform load: a quarter of their distance (the mean of |x| on [−L, L]
 //               is L/2);
 //   3–4 points  the polygon's area mean of |x − c|, triangle by triangle from c.
 // A round face (a cylinder's cap, a cone's base) is a disc whose polygon of four kept points is a
-// square inside it; World::contact_row uses the disc's 2r/3 when the patch is the whole face.
+// square inside it; World::twist_lever uses the disc's 2r/3 when the patch is the whole face.
 #pragma once
 
 #include "../math/vec3.hpp"
