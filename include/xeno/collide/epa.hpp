@@ -21,6 +21,7 @@
 #include "minkowski.hpp"
 
 #include <cstdint>
+#include <cmath>
 
 namespace xeno::detail {
 
@@ -67,18 +68,19 @@ public:
         for (int f = 0; f < 4; ++f)
             if (!set_face(f, tri[f][0], tri[f][1], tri[f][2])) return false;
         link_tetrahedron();
+        nearest_ = nearest_index();
         return true;
     }
 
     /// The live face nearest the origin.
-    const Face& nearest() const { return faces_[nearest_index()]; }
+    const Face& nearest() const { return faces_[nearest_]; }
 
     /// Adds w (a point of D beyond the nearest face): removes every face that sees it and closes
     /// the hole with a fan of faces to w. False when a cap is reached or round-off breaks the
     /// surface; the polytope must not be used after that.
     bool expand(const Vec3<T>& w) {
         if (vertex_count_ == kMaxVertices) return false;
-        const int first = nearest_index();
+        const int first = nearest_;
         horizon_count_ = 0;
         free_count_ = 0;
         remove(first);
@@ -86,7 +88,9 @@ public:
         if (horizon_count_ < 3 || horizon_count_ > kMaxHorizon) return false;
         const std::int16_t wi = static_cast<std::int16_t>(vertex_count_++);
         vertices_[wi] = w;
-        return close_hole(wi);
+        if (!close_hole(wi)) return false;
+        nearest_ = nearest_index();
+        return true;
     }
 
     /// Whether every live face's neighbours are live faces that name it back across the same
@@ -112,10 +116,12 @@ private:
         std::int8_t edge;   ///< its edge along the horizon
     };
 
+    // Over a plain array of the faces' distances (a removed face's is +infinity): a tight loop the
+    // compiler keeps in registers, where the scan over the faces themselves strode 48-byte records.
     int nearest_index() const {
-        int best = -1;
-        for (int f = 0; f < face_count_; ++f)
-            if (faces_[f].alive && (best < 0 || faces_[f].distance < faces_[best].distance)) best = f;
+        int best = 0;
+        for (int f = 1; f < face_count_; ++f)
+            if (distance_[f] < distance_[best]) best = f;
         return best;
     }
 
@@ -130,23 +136,28 @@ private:
         if (!(length_sq > square(min_twice_area_))) return false;  // a sliver: its normal is round-off
         face.normal = n / std::sqrt(length_sq);
         face.distance = dot(face.normal, vertices_[a]);
+        if (!std::isfinite(face.distance)) return false;  // nearest_index() takes +inf as removed
+        distance_[f] = face.distance;
         return true;
     }
 
-    // The four faces of the first tetrahedron share edges pairwise: find each edge's twin.
+    // The four faces of the first tetrahedron share edges pairwise. start() lists them as
+    // {0, i2, i1}, {0, i1, 3}, {i1, i2, 3}, {0, 3, i2}, so each edge's twin is the same whichever
+    // way i1 and i2 were swapped: edge k of face f runs backwards along edge kEdge[f][k] of face
+    // kFace[f][k] (well_linked() checks it in the tests).
     void link_tetrahedron() {
+        static constexpr std::int16_t kFace[4][3] = {{3, 2, 1}, {0, 2, 3}, {0, 3, 1}, {1, 2, 0}};
+        static constexpr std::int8_t kEdge[4][3] = {{2, 0, 0}, {2, 2, 0}, {1, 1, 1}, {2, 1, 0}};
         for (int f = 0; f < 4; ++f)
-            for (int k = 0; k < 3; ++k)
-                for (int g = 0; g < 4; ++g)
-                    for (int j = 0; j < 3; ++j)
-                        if (faces_[f].v[k] == faces_[g].v[(j + 1) % 3] && faces_[f].v[(k + 1) % 3] == faces_[g].v[j]) {
-                            faces_[f].adj[k] = static_cast<std::int16_t>(g);
-                            faces_[f].adj_edge[k] = static_cast<std::int8_t>(j);
-                        }
+            for (int k = 0; k < 3; ++k) {
+                faces_[f].adj[k] = kFace[f][k];
+                faces_[f].adj_edge[k] = kEdge[f][k];
+            }
     }
 
     void remove(int f) {
         faces_[f].alive = false;
+        distance_[f] = ScalarTraits<T>::infinity;
         free_[free_count_++] = static_cast<std::int16_t>(f);
     }
 
@@ -194,6 +205,7 @@ private:
         // can pinch it (a vertex met twice) or split it, and then some face would be linked twice
         // and another never: walk the loop and refuse anything but one cycle through every face.
         std::int16_t next[kMaxHorizon];
+        if (fan_in_visit_order(created, next)) return link_fan(created, next);
         for (int i = 0; i < horizon_count_; ++i) {
             next[i] = -1;
             for (int j = 0; j < horizon_count_; ++j) {
@@ -208,6 +220,26 @@ private:
             at = next[at];
             if ((at == 0) != (step == horizon_count_)) return false;  // back to the start too soon
         }
+        return link_fan(created, next);
+    }
+
+    // The common case in O(h): visit() met the horizon in order, each face's near end is the next
+    // face's far end, and no vertex is met twice. Then face i + 1 is the one and only candidate the
+    // general search in close_hole would find for face i, so the links are the same.
+    bool fan_in_visit_order(const std::int16_t* created, std::int16_t* next) {
+        const int h = horizon_count_;
+        ++stamp_;
+        for (int i = 0; i < h; ++i) {
+            const int j = i + 1 == h ? 0 : i + 1;
+            const std::int16_t near_end = faces_[created[i]].v[1];
+            if (faces_[created[j]].v[0] != near_end || seen_[near_end] == stamp_) return false;
+            seen_[near_end] = stamp_;
+            next[i] = static_cast<std::int16_t>(j);
+        }
+        return true;
+    }
+
+    bool link_fan(const std::int16_t* created, const std::int16_t* next) {
         for (int k = 0; k < horizon_count_; ++k) {
             Face& f = faces_[created[k]];
             Face& g = faces_[created[next[k]]];
@@ -221,9 +253,13 @@ private:
 
     Vec3<T> vertices_[kMaxVertices];
     Face faces_[kMaxFaces];
+    T distance_[kMaxFaces];  ///< faces_[f].distance, or +infinity once f is removed (nearest_index)
     HorizonEdge horizon_[kMaxHorizon];
     std::int16_t free_[kMaxFaces];
+    int seen_[kMaxVertices] = {};  ///< fan_in_visit_order: the call that last met each vertex
+    int stamp_ = 0;
     int vertex_count_ = 0, face_count_ = 0, horizon_count_ = 0, free_count_ = 0;
+    int nearest_ = 0;     ///< the live face nearest the origin, found once per change (nearest_index)
     T min_twice_area_{};  ///< m², below which a face's normal is mostly round-off
     T visible_{};         ///< m, how far beyond a face's plane a point must be to see it
 };
@@ -246,7 +282,7 @@ int expand_to_least_depth(const MinkowskiDifference<A, B>& md, const Vec3<typena
         const auto& face = polytope.nearest();
         const T lower = face.distance;
         if (h - lower <= std::max(relative * h, absolute)) break;  // h is within 1 % of the least
-        const Vec3<T> w = md.support(face.normal).v;
+        const Vec3<T> w = md.support_fresh(face.normal).v;
         ++queries;
         const T along = dot(w, face.normal);
         if (along < h) {

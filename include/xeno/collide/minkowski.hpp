@@ -52,6 +52,15 @@ public:
         const Vec3<T> pb = to_a(support_of(b_, transposed_transform(rotation_b_, -d), hint_b_));
         return {pa - pb, pa};
     }
+    /// support(d) for directions that jump about (the least-depth expansion's face normals): a
+    /// polyhedron answers as on its own (support_index: a scan up to 48 vertices), not by climbing
+    /// from its previous answer, which such a jump can make a long walk.
+    SupportPoint<T> support_fresh(const Vec3<T>& d) const {
+        Vec3<T> pa = a_.support(d);
+        if (margin_ > T(0)) pa += normalized_or(d, Vec3<T>::unit_y()) * margin_;
+        const Vec3<T> pb = to_a(b_.support(transposed_transform(rotation_b_, -d)));
+        return {pa - pb, pa};
+    }
     /// The normal of A's flat supporting face along d (A's frame), if it has one.
     std::optional<Vec3<T>> flat_normal_a(const Vec3<T>& d) const { return flat_normal_of(a_, d, hint_a_); }
     /// The normal of B's flat supporting face along d (both in A's frame), if it has one.
