@@ -70,7 +70,7 @@ void check_random_pairs() {
         const Shape<T>& b = maker.get(p.b, sb);
         const Transform<T> pa = test::cast_pose<T>(p.pose_a), pb = test::cast_pose<T>(p.pose_b);
         const T margin = k % 2 ? T(0) : static_cast<T>(0.05 * p.scale);
-        const bool swapped = detail::mpr_order_swapped(a, pa, b, pb);
+        const bool swapped = detail::query_order_swapped(a, pa, b, pb);
         std::visit(
             [&](const auto& ca, const auto& cb) {
                 using SA = std::decay_t<decltype(ca)>;

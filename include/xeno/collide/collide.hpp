@@ -117,13 +117,19 @@ template <class A, class B>
 constexpr bool answered_by_mpr =
     !is_round_pair<A, B> && !(std::is_same_v<A, Box<typename A::scalar_type>> && std::is_same_v<B, Box<typename A::scalar_type>>);
 
-/// Whether collide() should run an MPR pair as (B, A) and flip the answer: MPR and the least-depth
-/// expansion stop within tolerances along paths that depend on the order, so a pair that has two
-/// nearly equal directions of least depth could otherwise get a different one each way round.
-/// One canonical order (by shape kind, then pose, then size; ties keep the given order) makes
-/// collide(A, B) and collide(B, A) agree exactly.
+/// Whether collide() and intersect() should run a pair as (B, A) and flip the answer. MPR and the
+/// least-depth expansion stop within tolerances along paths that depend on the order, so a pair
+/// that has two nearly equal directions of least depth could otherwise get a different one each
+/// way round; the round pairs' closed forms work in one shape's frame, so their round-off depends
+/// on the order, and where the normal is free (coincident centres, a ball's centre on a capsule's
+/// axis) they would pick a different one each way round. One canonical order (by shape kind, then
+/// pose, then size; ties keep the given order) makes collide(A, B) and collide(B, A) agree
+/// exactly. Two boxes keep the given order: their separating axes are exact to rounding either
+/// way, and in the first box's frame a face normal of an unrotated first box comes out exact (a
+/// box resting on an unrotated floor gets the normal (0, 1, 0), not a rounding of it).
 template <class T>
-bool mpr_order_swapped(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
+bool query_order_swapped(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
+    if (std::holds_alternative<Box<T>>(a) && std::holds_alternative<Box<T>>(b)) return false;
     const auto key = [](const Shape<T>& s, const Transform<T>& p) {
         return std::make_tuple(s.index(), p.position.x, p.position.y, p.position.z, p.orientation.w, p.orientation.x,
                                p.orientation.y, p.orientation.z, bounding_radius(s));
@@ -174,59 +180,75 @@ Penetration<T> flipped(Penetration<T> p) {
 
 }  // namespace detail
 
-/// True when the shapes overlap (touching is not overlapping). Poses must be finite (InvalidArgument).
+namespace detail {
+
+/// intersect() in the given order.
 template <class T>
-bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
-    detail::require_finite_pose(pose_a, "intersect", "pose_a");
-    detail::require_finite_pose(pose_b, "intersect", "pose_b");
+bool intersect_in_order(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
     const std::optional<bool> closed_form = std::visit(
         [&](const auto& sa, const auto& sb) -> std::optional<bool> {
             using SA = std::decay_t<decltype(sa)>;
             using SB = std::decay_t<decltype(sb)>;
             // Closed-form pairs: cheaper than MPR, and always the same answer as collide().hit.
-            if constexpr (detail::is_round_pair<SA, SB>) {
-                return detail::round_intersect(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b));
-            } else if constexpr (!detail::answered_by_mpr<SA, SB>) {  // two boxes
+            if constexpr (is_round_pair<SA, SB>) {
+                return round_intersect(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b));
+            } else if constexpr (!answered_by_mpr<SA, SB>) {  // two boxes
                 const MinkowskiDifference<SA, SB> md(sa, pose_a, sb, pose_b);
                 Vec3<T> n, pa, pb;
                 T h;
-                return detail::refined_contact(md, n, h, pa, pb) && h > T(0);
+                return refined_contact(md, n, h, pa, pb) && h > T(0);
             } else {
                 return std::nullopt;
             }
         },
         a, b);
     if (closed_form) return *closed_form;
-    // MPR pairs, compiled once for every kind (shape_ref.hpp), in collide()'s order, so the two
-    // agree wherever MPR decides the hit (the poses are checked above: MPR directly, not
-    // mpr_intersect, which checks them again).
-    using AnyPair = MinkowskiDifference<detail::ShapeRef<T>, detail::ShapeRef<T>>;
-    const detail::ShapeRef<T> any_a(a), any_b(b);
-    if (detail::mpr_order_swapped(a, pose_a, b, pose_b)) return detail::mpr(AnyPair(any_b, pose_b, any_a, pose_a), true).hit;
-    return detail::mpr(AnyPair(any_a, pose_a, any_b, pose_b), true).hit;
+    // MPR pairs, compiled once for every kind (shape_ref.hpp); the poses were checked by the
+    // caller (MPR directly, not mpr_intersect, which checks them again).
+    using AnyPair = MinkowskiDifference<ShapeRef<T>, ShapeRef<T>>;
+    const ShapeRef<T> any_a(a), any_b(b);
+    return mpr(AnyPair(any_a, pose_a, any_b, pose_b), true).hit;
+}
+
+/// collide() in the given order.
+template <class T>
+Penetration<T> collide_in_order(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
+    const std::optional<Penetration<T>> closed_form = std::visit(
+        [&](const auto& sa, const auto& sb) -> std::optional<Penetration<T>> {
+            using SA = std::decay_t<decltype(sa)>;
+            using SB = std::decay_t<decltype(sb)>;
+            if constexpr (answered_by_mpr<SA, SB>) return std::nullopt;
+            else return collide_pair(sa, pose_a, sb, pose_b);
+        },
+        a, b);
+    if (closed_form) return *closed_form;
+    const ShapeRef<T> any_a(a), any_b(b);
+    return collide_pair(any_a, pose_a, any_b, pose_b);
+}
+
+}  // namespace detail
+
+/// True when the shapes overlap (touching is not overlapping). Poses must be finite (InvalidArgument).
+/// Runs in collide()'s order, so the two agree, whichever order they are given the shapes in.
+template <class T>
+bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
+    detail::require_finite_pose(pose_a, "intersect", "pose_a");
+    detail::require_finite_pose(pose_b, "intersect", "pose_b");
+    if (detail::query_order_swapped(a, pose_a, b, pose_b)) return detail::intersect_in_order(b, pose_b, a, pose_a);
+    return detail::intersect_in_order(a, pose_a, b, pose_b);
 }
 
 /// Penetration of two shapes with the refined normal: hit, unit normal A → B (world), the overlap
 /// depth along it (> 0) and a point on each body. Poses must be finite (InvalidArgument).
 /// collide(b, pose_b, a, pose_a) gives the same answer with the normal negated and the points
-/// swapped, bit for bit.
+/// swapped, bit for bit, for every pair of kinds but two boxes, which agree to rounding
+/// (detail::query_order_swapped says why).
 template <class T>
 Penetration<T> collide(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
     detail::require_finite_pose(pose_a, "collide", "pose_a");
     detail::require_finite_pose(pose_b, "collide", "pose_b");
-    const std::optional<Penetration<T>> closed_form = std::visit(
-        [&](const auto& sa, const auto& sb) -> std::optional<Penetration<T>> {
-            using SA = std::decay_t<decltype(sa)>;
-            using SB = std::decay_t<decltype(sb)>;
-            if constexpr (detail::answered_by_mpr<SA, SB>) return std::nullopt;
-            else return detail::collide_pair(sa, pose_a, sb, pose_b);
-        },
-        a, b);
-    if (closed_form) return *closed_form;
-    const detail::ShapeRef<T> any_a(a), any_b(b);
-    if (detail::mpr_order_swapped(a, pose_a, b, pose_b))  // only MPR pairs depend on the order
-        return detail::flipped(detail::collide_pair(any_b, pose_b, any_a, pose_a));
-    return detail::collide_pair(any_a, pose_a, any_b, pose_b);
+    if (detail::query_order_swapped(a, pose_a, b, pose_b)) return detail::flipped(detail::collide_in_order(b, pose_b, a, pose_a));
+    return detail::collide_in_order(a, pose_a, b, pose_b);
 }
 
 /// The contact manifold the world uses: up to four points with one normal (A → B), including
