@@ -19,9 +19,9 @@
 // Then λ_total = max(λ_total + Δλ, 0) on the accumulated impulse (never the increment).
 // Friction: |λ_t| ≤ µ Σ λ_n on the 2-vector (a disc, not a square); twist: |λ_τ| ≤ µ ℓ Σ λ_n, with ℓ
 // the patch's mean radius (contact/patch.hpp).
-// Restitution: after the substeps, rows that approached faster than the threshold before the
-// step and carried impulse get the target v_n = −e v_n⁻ (velocity captured before gravity was
-// added, so restitution adds no energy).
+// Restitution: after the substeps, rows that approached faster than the threshold and carried
+// impulse get the target v_n = −e v_n⁻, v_n⁻ taken at the impact: at the start of the pass whose
+// impulse stopped the point (wide_contact_solver.hpp; docs/solver-design.md, "Restitution").
 #pragma once
 
 #include "settings.hpp"
@@ -43,7 +43,7 @@ struct ContactConstraintPoint {
     T normal_impulse{};       ///< N·s per substep, accumulated
     T max_normal_impulse{};   ///< N·s, the largest this step
     T step_impulse{};         ///< N·s, summed over the substeps (events)
-    T relative_velocity{};    ///< m/s along n before the step (restitution)
+    T relative_velocity{};    ///< m/s along n at the impact (restitution; prepare sets the step's start)
 };
 
 /// One manifold's rows.

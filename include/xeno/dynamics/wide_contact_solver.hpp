@@ -37,6 +37,7 @@ struct WidePoint {
     WideVec3<V> r_a, r_b;    ///< m, centres of mass to the point
     WideVec3<V> rn_a, rn_b;  ///< r × n
     V adjusted_separation, normal_mass, normal_impulse, max_normal_impulse, step_impulse;
+    V approach;  ///< m/s, v_n when the point first carries impulse (ContactConstraintPoint::relative_velocity)
 };
 
 /// A symmetric 3 × 3 matrix in lanes (a world inverse inertia): its upper triangle.
@@ -58,6 +59,7 @@ struct WideContact {
     int max_count;             ///< points of the fullest lane
     int min_count;             ///< points of the emptiest lane that holds a manifold
     bool rolls;                ///< some lane has a rounded side (round_a or round_b > 0)
+    bool bounces;              ///< some lane has a restitution (its points' approach speeds are kept)
     V count;                   ///< points per lane
     WideVec3<V> normal, t1, t2;
     V inv_mass_a, inv_mass_b, friction;
@@ -192,6 +194,16 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
     const WideVec3<V> n_b = rotate(conjugate(B.dq), c.normal), n_a = rotate(conjugate(A.dq), c.normal);
     // (A group of flat sides only skips the term: 3 % of a box pyramid's step.)
     const V moved = c.rolls ? dot(B.dp - A.dp, c.normal) + rolling_rise(c, n_a, n_b) : dot(B.dp - A.dp, c.normal);
+    // Restitution's approach speed: each point's v_n at the start of every pass until it first
+    // carries impulse, so the one kept is v_n at the impact, with the gravity of the substeps
+    // before it. (Taken before any of the pass's impulses: a face landing on four points would
+    // otherwise see the later points pushed down by the first one's impulse, and bounce higher.)
+    if (c.bounces)
+        for (int i = 0; i < c.max_count; ++i) {
+            WidePoint<V>& p = c.points[i];
+            const V vn = dot(B.v - A.v, c.normal) + dot(B.w, p.rn_b) - dot(A.w, p.rn_a);
+            p.approach = select(p.max_normal_impulse > zero, p.approach, vn);
+        }
     V total = zero;
     for (int i = 0; i < c.max_count; ++i) {
         WidePoint<V>& p = c.points[i];
@@ -291,6 +303,7 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
         p.adjusted_separation.set(l, q.adjusted_separation), p.normal_mass.set(l, q.normal_mass);
         p.normal_impulse.set(l, q.normal_impulse), p.max_normal_impulse.set(l, q.max_normal_impulse),
             p.step_impulse.set(l, q.step_impulse);
+        p.approach.set(l, q.relative_velocity);
     }
     const Vec3<T> a1 = cross(k.rc_a, k.t1), a2 = cross(k.rc_a, k.t2), b1 = cross(k.rc_b, k.t1), b2 = cross(k.rc_b, k.t2);
     put(c.a1, a1), put(c.a2, a2), put(c.b1, b1), put(c.b2, b2);
@@ -300,6 +313,7 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
         c.twist_friction.set(l, k.friction * k.twist_lever);
     c.round_a.set(l, k.round_a), c.round_b.set(l, k.round_b);
     c.rolls = c.rolls || k.round_a > T(0) || k.round_b > T(0);
+    c.bounces = c.bounces || k.restitution > T(0);
 }
 
 /// Copies lane `l`'s impulses back into its scalar row (for restitution, events and the next
@@ -312,6 +326,7 @@ void unpack_lane(const WideContact<T, W>& c, int l, ContactConstraint<T>& k) {
         q.normal_impulse = p.normal_impulse.get(l);
         q.max_normal_impulse = p.max_normal_impulse.get(l);
         q.step_impulse = p.step_impulse.get(l);
+        q.relative_velocity = p.approach.get(l);
     }
     k.friction_1 = c.friction_1.get(l);
     k.friction_2 = c.friction_2.get(l);

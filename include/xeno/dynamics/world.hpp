@@ -10,7 +10,7 @@
 //                        points so their impulses warm-start; pairs that left lose their contact
 //    4. wake             islands touched by an awake body wake up
 //    5. prepare          solver bodies and contact rows (anchors, effective masses, softness,
-//                        restitution speeds captured before gravity)
+//                        restitution speeds, taken again by the passes up to each impact)
 //    6. substeps         integrate velocities → warm start → solve with bias → integrate positions
 //                        → relax (docs/solver-design.md, "Substeps"; baumgarte mode: one substep
 //                        and N iterations)
@@ -1796,7 +1796,8 @@ void World<T>::share_support_stiffness(T static_hertz, T h) {
 }
 
 /// The contact row of contacts_[m] (prepare): anchors, effective masses, softness and the
-/// approach speed for restitution, from the bodies' state at the start of the step.
+/// approach speed for restitution (until the solve takes it at the impact), from the bodies'
+/// state at the start of the step.
 template <class T>
 detail::ContactConstraint<T> World<T>::contact_row(std::uint32_t m, const detail::Softness<T>& soft,
                                                    const detail::Softness<T>& soft_static) {
