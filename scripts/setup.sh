@@ -1,7 +1,6 @@
 #!/usr/bin/env bash
 # Installs what xeno's tests, benchmarks and examples need on Debian/Ubuntu, only when missing:
 # idempotent, and silent when everything is already there. The library itself needs none of it.
-#   scripts/setup.sh test   compilers, CMake, clang-format, doctest, Catch2, OSMesa, libpng, libccd, Bullet
 #   scripts/setup.sh test   compilers, CMake, clang-format, doctest, Catch2, OSMesa, libpng, libccd, Bullet,
 #                           and what the browser page's test needs (below)
 #   scripts/setup.sh main   the first list plus ffmpeg (GIF/MP4) and gnuplot (plots)
