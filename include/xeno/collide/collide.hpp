@@ -137,20 +137,14 @@ bool query_order_swapped(const Shape<T>& a, const Transform<T>& pose_a, const Sh
     return key(b, pose_b) < key(a, pose_a);
 }
 
-/// The distance between two spheres' centres, world frame, for collide() and intersect(): both
-/// take it from here so that they agree exactly. Two spheres need no pair frame (a rotation
-/// matrix and the general round-pair reduction cost 2–3 times the rest of the query).
-template <class T>
-T sphere_centre_distance(const Transform<T>& pose_a, const Transform<T>& pose_b) {
-    return length(pose_b.position - pose_a.position);
-}
-
-/// collide() for two spheres, world frame; nullopt when the centres are within touching
-/// distance, where the normal is free and the general reduction (round_pairs.hpp) picks it.
+/// collide() for two spheres in the world frame: no pair frame (a rotation matrix and the general
+/// round-pair reduction cost 2–3 times the rest of the query). nullopt when the centres are within
+/// touching distance, where the normal is free and the general reduction (round_pairs.hpp) picks
+/// it. intersect() asks this too, so the two agree exactly.
 template <class T>
 std::optional<Penetration<T>> sphere_pair(const Sphere<T>& a, const Transform<T>& pose_a, const Sphere<T>& b,
                                           const Transform<T>& pose_b) {
-    const T distance = sphere_centre_distance(pose_a, pose_b);
+    const T distance = length(pose_b.position - pose_a.position);
     if (!(distance > touching_distance(a.bounding_radius() + b.bounding_radius()))) return std::nullopt;
     Penetration<T> out;
     const T depth = a.radius() + b.radius() - distance;
@@ -207,10 +201,6 @@ Penetration<T> flipped(Penetration<T> p) {
     return p;
 }
 
-}  // namespace detail
-
-namespace detail {
-
 /// intersect() in the given order.
 template <class T>
 bool intersect_in_order(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
@@ -219,10 +209,9 @@ bool intersect_in_order(const Shape<T>& a, const Transform<T>& pose_a, const Sha
             using SA = std::decay_t<decltype(sa)>;
             using SB = std::decay_t<decltype(sb)>;
             // Closed-form pairs: cheaper than MPR, and always the same answer as collide().hit.
-            if constexpr (std::is_same_v<SA, Sphere<T>> && std::is_same_v<SB, Sphere<T>>) {  // as sphere_pair
-                const T distance = sphere_centre_distance(pose_a, pose_b);
-                if (!(distance > touching_distance(sa.bounding_radius() + sb.bounding_radius()))) return true;
-                return sa.radius() + sb.radius() - distance > T(0);
+            if constexpr (std::is_same_v<SA, Sphere<T>> && std::is_same_v<SB, Sphere<T>>) {
+                const std::optional<Penetration<T>> p = sphere_pair(sa, pose_a, sb, pose_b);
+                return p ? p->hit : true;  // centres within touching distance: a hit (round_intersect)
             } else if constexpr (is_round_pair<SA, SB>) {
                 return round_intersect(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b));
             } else if constexpr (!answered_by_mpr<SA, SB>) {  // two boxes

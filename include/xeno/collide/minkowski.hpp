@@ -47,20 +47,12 @@ public:
 
     /// Support of D along d (A's frame; d need not be unit): S_A(d) − S_B(−d).
     SupportPoint<T> support(const Vec3<T>& d) const {
-        Vec3<T> pa = support_of(a_, d, hint_a_);
-        if (margin_ > T(0)) pa += normalized_or(d, Vec3<T>::unit_y()) * margin_;
-        const Vec3<T> pb = to_a(support_of(b_, transposed_transform(rotation_b_, -d), hint_b_));
-        return {pa - pb, pa};
+        return combined(d, support_of(a_, d, hint_a_), support_of(b_, direction_to_b(-d), hint_b_));
     }
     /// support(d) for directions that jump about (the least-depth expansion's face normals): a
     /// polyhedron answers as on its own (support_index: a scan up to 48 vertices), not by climbing
     /// from its previous answer, which such a jump can make a long walk.
-    SupportPoint<T> support_fresh(const Vec3<T>& d) const {
-        Vec3<T> pa = a_.support(d);
-        if (margin_ > T(0)) pa += normalized_or(d, Vec3<T>::unit_y()) * margin_;
-        const Vec3<T> pb = to_a(b_.support(transposed_transform(rotation_b_, -d)));
-        return {pa - pb, pa};
-    }
+    SupportPoint<T> support_fresh(const Vec3<T>& d) const { return combined(d, a_.support(d), b_.support(direction_to_b(-d))); }
     /// The normal of A's flat supporting face along d (A's frame), if it has one.
     std::optional<Vec3<T>> flat_normal_a(const Vec3<T>& d) const { return flat_normal_of(a_, d, hint_a_); }
     /// The normal of B's flat supporting face along d (both in A's frame), if it has one.
@@ -107,6 +99,13 @@ public:
     const B& shape_b() const { return b_; }
 
 private:
+    // The support point of D along d from A's support along d and B's along −d (B's frame).
+    SupportPoint<T> combined(const Vec3<T>& d, Vec3<T> pa, const Vec3<T>& pb_in_b) const {
+        if (margin_ > T(0)) pa += normalized_or(d, Vec3<T>::unit_y()) * margin_;
+        const Vec3<T> pb = to_a(pb_in_b);
+        return {pa - pb, pa};
+    }
+
     // Polyhedra climb from the vertex of the previous query: successive MPR directions are close,
     // so each support is a few neighbour checks (thesis 3.4, hill climbing). Other shapes answer
     // in closed form.
