@@ -335,6 +335,48 @@ TEST_CASE_TEMPLATE("regression: a ball and a box bounce to e^2 of each apex, bou
     }
 }
 
+TEST_CASE_TEMPLATE("regression: a ball striking a row of touching balls with e = 1 adds no energy", C, XENO_TEST_CONFIGS) {
+    // The approach speed of restitution was taken by each row as its turn came in a pass: the
+    // contact between the first and second resting balls took the speed the striker had just given
+    // the second one and bounced it again. Four balls (one striking three) left with 3.0 times the
+    // kinetic energy they came with when the resting balls touched (float; 0.8 in double), 3.0
+    // times with 1 mm between them and 1.5 with 1 cm; now 0.58, 0.68 and 0.82 times, in float and
+    // double (the solver does not pass the impulse down a touching row as a real cradle does).
+    using T = typename C::T;
+    for (const T gap : {T(0), T(0.001), T(0.01)}) {
+        WorldSettings<T> s = C::settings();
+        s.gravity = Vec3<T>::zero();
+        World<T> w(s);
+        BodyDef<T> def;
+        def.material = {T(0), T(1)};
+        std::vector<BodyId> balls;
+        for (int i = 0; i < 4; ++i) {
+            def.position = {i == 0 ? T(-2) : T(i - 1) * (T(1) + gap), T(0), T(0)};
+            def.linear_velocity = {i == 0 ? T(3) : T(0), T(0), T(0)};
+            balls.push_back(w.create_body(Sphere<T>(T(0.5)), def));
+        }
+        auto energy = [&] {
+            T e = T(0);
+            for (const BodyId id : balls) e += T(0.5) * w.body(id).mass() * length_squared(w.body(id).linear_velocity());
+            return e;
+        };
+        auto momentum = [&] {
+            T p = T(0);
+            for (const BodyId id : balls) p += w.body(id).mass() * w.body(id).linear_velocity().x;
+            return p;
+        };
+        const T e0 = energy(), p0 = momentum();
+        simulate(w, T(1.5));
+        CAPTURE(gap);
+        CAPTURE(energy() / e0);
+        CHECK(energy() <= e0 * T(1.0001));
+        CHECK(energy() > T(0.5) * e0);
+        // With sleeping on, a ball left drifting below the sleep speed stops, and its momentum with it.
+        if (!C::sleeping) CHECK(std::abs(momentum() - p0) <= T(1e-4) * p0);
+        CHECK(w.body(balls.back()).linear_velocity().x > T(1));  // the push reached the far end
+    }
+}
+
 TEST_CASE_TEMPLATE("with restitution 1 a box never bounces higher than it started, over 10 bounces", C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
     World<T> w(C::settings());
@@ -350,7 +392,9 @@ TEST_CASE_TEMPLATE("with restitution 1 a box never bounces higher than it starte
     int bounces = 0;
     T highest = T(0);
     T previous_vy = T(0);
-    simulate(w, T(12), [&](int) {
+    // 14 s: each bounce keeps 99 % of its height, so ten of them take 13 s (12 s held ten while
+    // restitution lost 4-5 % a bounce).
+    simulate(w, T(14), [&](int) {
         const Body<T>& b = w.body(box);
         if (previous_vy < T(0) && b.linear_velocity().y > T(0)) ++bounces;
         previous_vy = b.linear_velocity().y;

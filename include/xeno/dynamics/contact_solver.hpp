@@ -20,8 +20,8 @@
 // Friction: |λ_t| ≤ µ Σ λ_n on the 2-vector (a disc, not a square); twist: |λ_τ| ≤ µ ℓ Σ λ_n, with ℓ
 // the patch's mean radius (contact/patch.hpp).
 // Restitution: after the substeps, rows that approached faster than the threshold and carried
-// impulse get the target v_n = −e v_n⁻, v_n⁻ taken at the impact: at the start of the pass whose
-// impulse stopped the point (wide_contact_solver.hpp; docs/solver-design.md, "Restitution").
+// impulse get the target v_n = −e v_n⁻, v_n⁻ the approach at the impact under gravity and applied
+// forces alone (wide_contact_solver.hpp; docs/solver-design.md, "Restitution").
 #pragma once
 
 #include "settings.hpp"
@@ -53,6 +53,9 @@ struct ContactConstraint {
     std::uint32_t manifold = 0;    ///< index of the manifold it came from
     Vec3<T> normal{}, t1{}, t2{};  ///< unit, world: normal A → B and two tangents
     T friction{}, restitution{};
+    /// m/s²: n · (a_B − a_A), the bodies' accelerations from gravity and applied forces: what the
+    /// substeps before an impact add to its approach speed (take_approach_wide).
+    T normal_acceleration{};
     Softness<T> softness{};
     int count = 0;
     std::array<ContactConstraintPoint<T>, 4> points{};

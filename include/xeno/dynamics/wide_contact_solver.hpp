@@ -37,7 +37,7 @@ struct WidePoint {
     WideVec3<V> r_a, r_b;    ///< m, centres of mass to the point
     WideVec3<V> rn_a, rn_b;  ///< r × n
     V adjusted_separation, normal_mass, normal_impulse, max_normal_impulse, step_impulse;
-    V approach;  ///< m/s, v_n when the point first carries impulse (ContactConstraintPoint::relative_velocity)
+    V approach;  ///< m/s, v_n at the impact (take_approach_wide; ContactConstraintPoint::relative_velocity)
 };
 
 /// A symmetric 3 × 3 matrix in lanes (a world inverse inertia): its upper triangle.
@@ -63,6 +63,7 @@ struct WideContact {
     V count;                   ///< points per lane
     WideVec3<V> normal, t1, t2;
     V inv_mass_a, inv_mass_b, friction;
+    V normal_acceleration;                     ///< m/s², ContactConstraint::normal_acceleration
     WideSym3<V> inv_inertia_a, inv_inertia_b;  ///< world, frozen for the step
     V bias_rate, mass_scale, impulse_scale;    ///< the lane's softness
     WidePoint<V> points[4];
@@ -167,6 +168,22 @@ void warm_start_wide(const WideContact<T, W>& c, std::vector<SolverBody<T>>& bod
     scatter<T, W>(B, bodies, c.b);
 }
 
+/// Restitution's approach speed at the impact: each point's v_n at the start of the step plus
+/// what gravity and the applied forces add to it in each substep, until the point first carries
+/// impulse (docs/solver-design.md, "Restitution"). Not the bodies' own v_n at the impact: that
+/// holds the impulses of the other contacts too, and in a row of touching balls the second contact
+/// took as its approach the speed the first impact had just given the ball between them, and
+/// bounced it again (a ball striking three with e = 1 left them 3 times the energy it brought).
+template <class T, int W>
+void take_approach_wide(WideContact<T, W>& c, T h) {
+    using V = Wide<T, W>;
+    const V zero = V::splat(T(0)), gain = c.normal_acceleration * V::splat(h);
+    for (int i = 0; i < c.max_count; ++i) {
+        WidePoint<V>& p = c.points[i];
+        p.approach = select(p.max_normal_impulse > zero, p.approach, p.approach + gain);
+    }
+}
+
 /// A rounded surface of radius ρ (a sphere, a capsule, a cylinder's side) is a core swept by a
 /// ball: its contact point is the core's point plus ρ towards the other body, and only the core's
 /// point turns with the body. An anchor fixed in the body turns whole, so a ball rolling through
@@ -194,16 +211,6 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
     const WideVec3<V> n_b = rotate(conjugate(B.dq), c.normal), n_a = rotate(conjugate(A.dq), c.normal);
     // (A group of flat sides only skips the term: 3 % of a box pyramid's step.)
     const V moved = c.rolls ? dot(B.dp - A.dp, c.normal) + rolling_rise(c, n_a, n_b) : dot(B.dp - A.dp, c.normal);
-    // Restitution's approach speed: each point's v_n at the start of every pass until it first
-    // carries impulse, so the one kept is v_n at the impact, with the gravity of the substeps
-    // before it. (Taken before any of the pass's impulses: a face landing on four points would
-    // otherwise see the later points pushed down by the first one's impulse, and bounce higher.)
-    if (c.bounces)
-        for (int i = 0; i < c.max_count; ++i) {
-            WidePoint<V>& p = c.points[i];
-            const V vn = dot(B.v - A.v, c.normal) + dot(B.w, p.rn_b) - dot(A.w, p.rn_a);
-            p.approach = select(p.max_normal_impulse > zero, p.approach, vn);
-        }
     V total = zero;
     for (int i = 0; i < c.max_count; ++i) {
         WidePoint<V>& p = c.points[i];
@@ -292,6 +299,7 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
     c.count.set(l, static_cast<T>(k.count));
     put(c.normal, k.normal), put(c.t1, k.t1), put(c.t2, k.t2);
     c.inv_mass_a.set(l, sa.inv_mass), c.inv_mass_b.set(l, sb.inv_mass), c.friction.set(l, k.friction);
+    c.normal_acceleration.set(l, k.normal_acceleration);
     put_sym(c.inv_inertia_a, l, sa.inv_inertia), put_sym(c.inv_inertia_b, l, sb.inv_inertia);
     c.bias_rate.set(l, k.softness.bias_rate), c.mass_scale.set(l, k.softness.mass_scale),
         c.impulse_scale.set(l, k.softness.impulse_scale);
@@ -385,6 +393,15 @@ public:
         for (Single& c : overflow_) solve_wide(c, bodies, pass);
         for_each_colour(tasks, [&](std::uint32_t g) { solve_wide(groups_[g], bodies, pass); });
         bodies[0] = SolverBody<T>{};
+    }
+    /// take_approach_wide for the groups that bounce, once a substep (before its impulses).
+    void take_approach(T h, TaskSystem* tasks) {
+        for (Single& c : overflow_)
+            if (c.bounces) take_approach_wide(c, h);
+        parallel_for(tasks, static_cast<std::uint32_t>(groups_.size()), pack_range, [&](std::uint32_t first, std::uint32_t last) {
+            for (std::uint32_t g = first; g < last; ++g)
+                if (groups_[g].bounces) take_approach_wide(groups_[g], h);
+        });
     }
     /// Copies the impulses back into the scalar rows.
     void unpack(std::vector<ContactConstraint<T>>& rows, TaskSystem* tasks) const {

@@ -10,7 +10,7 @@
 //                        points so their impulses warm-start; pairs that left lose their contact
 //    4. wake             islands touched by an awake body wake up
 //    5. prepare          solver bodies and contact rows (anchors, effective masses, softness,
-//                        restitution speeds, taken again by the passes up to each impact)
+//                        restitution speeds, carried by gravity to each impact)
 //    6. substeps         integrate velocities → warm start → solve with bias → integrate positions
 //                        → relax (docs/solver-design.md, "Substeps"; baumgarte mode: one substep
 //                        and N iterations)
@@ -521,6 +521,11 @@ private:
     /// A joint acts while it lives and both its bodies are enabled (set_enabled).
     bool joint_active(const Joint<T>& j) const { return j.alive && bodies_[j.a.index].enabled_ && bodies_[j.b.index].enabled_; }
     T speed_limit(const Body<T>& b) const { return b.fast_ ? detail::max_setting_length<T>() : settings_.max_linear_speed; }
+    /// m/s²: what gravity and the applied force do to b's velocity (zero unless dynamic and awake).
+    Vec3<T> free_acceleration(const Body<T>& b) const {
+        if (b.type_ != BodyType::dynamic || !b.awake_) return Vec3<T>::zero();
+        return settings_.gravity * b.gravity_scale_ + b.force_ * b.inverse_mass_;
+    }
     /// How fast the body can travel this step (its speed within the cap; a velocity whose length
     /// overflows is capped like any other), for boxes and margins that must stay finite.
     T travel_speed(const Body<T>& b) const { return std::min(length(b.linear_velocity_), speed_limit(b)); }
@@ -1528,11 +1533,7 @@ bool World<T>::closes_within_step(const Contact<T>& c, T dt) const {
     // the solver treat the sleeper as a wall and swallow the impact (issue 12).
     const Body<T>& a = bodies_[c.a.index];
     const Body<T>& b = bodies_[c.b.index];
-    auto acceleration = [&](const Body<T>& x) {
-        if (x.type_ != BodyType::dynamic || !x.awake_) return Vec3<T>::zero();
-        return settings_.gravity * x.gravity_scale_ + x.force_ * x.inverse_mass_;
-    };
-    const Vec3<T> relative_acceleration = acceleration(b) - acceleration(a);
+    const Vec3<T> relative_acceleration = free_acceleration(b) - free_acceleration(a);
     for (int i = 0; i < c.manifold.count; ++i) {
         const ContactPoint<T>& cp = c.manifold.points[static_cast<std::size_t>(i)];
         const Vec3<T> pa = a.world_point(cp.local_a), pb = b.world_point(cp.local_b);
@@ -1797,8 +1798,8 @@ void World<T>::share_support_stiffness(T static_hertz, T h) {
 }
 
 /// The contact row of contacts_[m] (prepare): anchors, effective masses, softness and the
-/// approach speed for restitution (until the solve takes it at the impact), from the bodies'
-/// state at the start of the step.
+/// approach speed for restitution (at the start of the step; the substeps add gravity's share up
+/// to the impact), from the bodies' state at the start of the step.
 template <class T>
 detail::ContactConstraint<T> World<T>::contact_row(std::uint32_t m, const detail::Softness<T>& soft,
                                                    const detail::Softness<T>& soft_static) {
@@ -1818,6 +1819,7 @@ detail::ContactConstraint<T> World<T>::contact_row(std::uint32_t m, const detail
     c.t2 = cross(c.normal, c.t1);
     c.friction = contact.friction;
     c.restitution = contact.restitution;
+    c.normal_acceleration = dot(free_acceleration(b) - free_acceleration(a), c.normal);
     c.softness = (a.type_ == BodyType::dynamic && b.type_ == BodyType::dynamic) ? soft : soft_static;
     if (settings_.solver == SolverMode::baumgarte) c.softness = detail::Softness<T>{};
     c.count = contact.manifold.count;
@@ -1937,6 +1939,7 @@ void World<T>::solve(T dt) {
                 if (integration_[i].dynamic)
                     detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
         });
+        if (!bouncing_rows_.empty()) wide_rows_.take_approach(h, tasks_.get());
         if (settings_.warm_starting) {
             for (const detail::JointConstraint<T>& c : joint_rows_)
                 detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
