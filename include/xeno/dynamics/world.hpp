@@ -1824,12 +1824,13 @@ detail::ContactConstraint<T> World<T>::contact_row(std::uint32_t m, const detail
     if (settings_.solver == SolverMode::baumgarte) c.softness = detail::Softness<T>{};
     c.count = contact.manifold.count;
     const Vec3<T> xa = a.position_, xb = b.position_;
-    Vec3<T> centre{};
+    Vec3<T> centre_a{}, centre_b{};
     for (int i = 0; i < c.count; ++i) {
         const ContactPoint<T>& cp = contact.manifold.points[static_cast<std::size_t>(i)];
         detail::ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
         const Vec3<T> pa = a.world_point(cp.local_a), pb = b.world_point(cp.local_b);
-        centre += (pa + pb) * T(0.5);
+        centre_a += pa;
+        centre_b += pb;
         // Each body's lever to its own anchor. For points of closest features pb − pa lies along
         // n and the levers' n-moments equal those of the midpoint; for points of a first touch
         // (at_first_touch) the anchors are apart across n by the travel still to come, and a
@@ -1845,9 +1846,12 @@ detail::ContactConstraint<T> World<T>::contact_row(std::uint32_t m, const detail
         p.max_normal_impulse = T(0);
         p.relative_velocity = dot(vb.velocity_at(p.r_b) - va.velocity_at(p.r_a), c.normal);
     }
-    centre /= static_cast<T>(c.count);
-    c.rc_a = centre - xa;
-    c.rc_b = centre - xb;
+    // Friction and twist act at each body's own patch centre too: at the midpoint, a ball that
+    // lands from a step away was turned about a lever half that step longer than its radius (at
+    // 5 m/s and 60 Hz, 8 % more spin than the friction's impulse gives, and it left the bounce
+    // rolling about a point below the floor).
+    c.rc_a = centre_a / static_cast<T>(c.count) - xa;
+    c.rc_b = centre_b / static_cast<T>(c.count) - xb;
     // The 2×2 tangent effective mass K and its inverse.
     const Vec3<T> a1 = cross(c.rc_a, c.t1), a2 = cross(c.rc_a, c.t2), b1 = cross(c.rc_b, c.t1), b2 = cross(c.rc_b, c.t2);
     const T base = sa.inv_mass + sb.inv_mass;
