@@ -377,22 +377,20 @@ TEST_CASE_TEMPLATE("regression: a ball striking a row of touching balls with e =
     }
 }
 
-TEST_CASE_TEMPLATE("regression: a ball striking a floor obliquely leaves with the spin its friction gives", C,
+TEST_CASE_TEMPLATE("regression: a ball striking a floor obliquely leaves as Newton's and Coulomb's laws say", C,
                    XENO_TEST_CONFIGS) {
     // A solid ball (I = 2/5 m r^2) meets the floor at v_t across and v_n down. While it slips,
-    // friction takes mu m v_n of its tangential momentum as the approach stops (e = 0); it cannot
-    // take more than makes the contact point stop, which leaves the ball rolling at 5/7 v_t, and a
-    // ball that rolls off the impact keeps rolling whatever its bounce. Either way the spin is
-    // 5 (v_t - v_t') / (2 r). Friction turned the ball about the midpoint of the anchors, half a
-    // step's travel below its surface: 8 % too much spin at 5 m/s, and a ball that should roll
-    // left the floor slipping (2.24 m/s for 2.14). (A ball that still slips when it rebounds
-    // should lose mu e m v_n more across; the solver does not: docs/solver-design.md.)
+    // friction takes mu (1 + e) m v_n of its tangential momentum over the impact; it cannot take
+    // more than makes the contact point stop, which leaves the ball rolling at 5/7 v_t. Either way
+    // the spin is 5 (v_t - v_t') / (2 r). Two faults failed this: friction turned the ball about
+    // the midpoint of the anchors, half a step's travel below its surface (8 % too much spin at
+    // 5 m/s, and a ball that should roll left slipping), and only the impulse that stopped the
+    // approach bounded friction, not the rebound's (at mu 0.1, e = 1 it left at 2.5 m/s for 2.14).
     using T = typename C::T;
     const double r = 0.5, vt = 3, vn = 5;
     for (const double mu : {0.05, 0.1, 0.3})
         for (const double e : {0.0, 0.5, 1.0}) {
-            const bool rolls = vt - mu * vn < 5.0 / 7.0 * vt;
-            if (e > 0 && !rolls) continue;  // the rebound's friction (above)
+            const bool rolls = vt - mu * (1 + e) * vn < 5.0 / 7.0 * vt;
             WorldSettings<T> s = C::settings();
             s.gravity = Vec3<T>::zero();
             World<T> w(s);
@@ -407,7 +405,7 @@ TEST_CASE_TEMPLATE("regression: a ball striking a floor obliquely leaves with th
             def.linear_velocity = {T(vt), T(-vn), T(0)};
             const BodyId ball = w.create_body(Sphere<T>(T(r)), def);
             simulate(w, T(0.5));
-            const double after = rolls ? 5.0 / 7.0 * vt : vt - mu * vn;
+            const double after = rolls ? 5.0 / 7.0 * vt : vt - mu * (1 + e) * vn;
             const Vec3<T> v = w.body(ball).linear_velocity(), spin = w.body(ball).angular_velocity();
             CAPTURE(mu);
             CAPTURE(e);
