@@ -69,9 +69,9 @@ struct ContactConstraint {
     /// cylinder's side; 0 for flat faces and edges). Such a surface rolls: its contact point stays
     /// at the bottom instead of turning with the body (rolling_rise in wide_contact_solver.hpp).
     T round_a{}, round_b{};
-    /// N·s: the normal impulse restitution added (summed over the points) and the friction it
-    /// allows at the patch centre along t1, t2 (apply_restitution).
-    T bounce_impulse{}, bounce_friction_1{}, bounce_friction_2{};
+    /// N·s: the normal impulse restitution added, summed over the points (apply_restitution);
+    /// µ times it bounds the friction of the rebound (bounce_friction).
+    T bounce_impulse{};
 };
 
 /// What one solver pass needs to know.
@@ -91,23 +91,23 @@ struct SolvePass {
 /// patch centre. Without it a ball striking a floor obliquely kept the slip of a dead impact: at
 /// 3 m/s across and 5 m/s down, µ = 0.1, e = 1, it left at 2.5 m/s instead of the 2.14 m/s of
 /// Newton's and Coulomb's laws (it would have lost µ(1 + e) v_n = 1 m/s; it rolls at 5/7 of 3 m/s).
+/// One row, run once, so it starts from no impulse and needs none stored.
 template <class T>
-void bounce_friction(ContactConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, const SolverMass<T>& ma,
+void bounce_friction(const ContactConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, const SolverMass<T>& ma,
                      const SolverMass<T>& mb) {
+    if (!(c.bounce_impulse > T(0))) return;  // resting, or below the threshold: no rebound
     const Vec3<T> dv = b.velocity_at(c.rc_b) - a.velocity_at(c.rc_a);
     const T v1 = dot(dv, c.t1), v2 = dot(dv, c.t2);
-    T f1 = c.bounce_friction_1 - (c.k11 * v1 + c.k12 * v2);
-    T f2 = c.bounce_friction_2 - (c.k12 * v1 + c.k22 * v2);
-    const T bound = c.friction * std::max(c.bounce_impulse, T(0));
+    T f1 = -(c.k11 * v1 + c.k12 * v2);
+    T f2 = -(c.k12 * v1 + c.k22 * v2);
+    const T bound = c.friction * c.bounce_impulse;
     const T magnitude_sq = f1 * f1 + f2 * f2;
     if (magnitude_sq > bound * bound) {
         const T scale = bound / std::sqrt(magnitude_sq);
         f1 *= scale;
         f2 *= scale;
     }
-    const Vec3<T> impulse = c.t1 * (f1 - c.bounce_friction_1) + c.t2 * (f2 - c.bounce_friction_2);
-    c.bounce_friction_1 = f1;
-    c.bounce_friction_2 = f2;
+    const Vec3<T> impulse = c.t1 * f1 + c.t2 * f2;
     apply_impulse(a, ma, c.rc_a, -impulse);
     apply_impulse(b, mb, c.rc_b, impulse);
 }
@@ -148,7 +148,7 @@ void apply_restitution(std::vector<ContactConstraint<T>>& constraints, const std
     };
     normal_sweeps();
     for (const std::uint32_t row : bouncing) {
-        ContactConstraint<T>& c = constraints[row];
+        const ContactConstraint<T>& c = constraints[row];
         bounce_friction(c, bodies[c.a], bodies[c.b], masses[c.a], masses[c.b]);
     }
     normal_sweeps();

@@ -198,9 +198,10 @@ XENO_WIDE_INLINE Wide<T, W> rolling_rise(const WideContact<T, W>& c, const WideV
     return c.round_b * (dot(n_b, c.normal) - one) + c.round_a * (dot(n_a, c.normal) - one);
 }
 
-/// One Gauss–Seidel sweep over the normal rows of W manifolds, points 0 … 3 in turn, for the
-/// lanes with more points than their `limit` index (c.count: every lane's own points; 0: none).
-/// `masked` false lets the points every lane has skip the lane test. Returns Σ |Δλ| per lane.
+/// One Gauss–Seidel sweep over the normal rows of W manifolds, points 0 … 3 in turn; point i of a
+/// lane is solved where i < limit (c.count: all of the lane's points; 0: none, the lane keeps its
+/// values). `masked_all` false lets the points every lane has skip that test. Returns Σ |Δλ| per
+/// lane.
 template <class T, int W>
 XENO_WIDE_INLINE Wide<T, W> sweep_normal_rows(WideContact<T, W>& c, WideBody<Wide<T, W>>& A, WideBody<Wide<T, W>>& B,
                                               const WideVec3<Wide<T, W>>& n_a, const WideVec3<Wide<T, W>>& n_b,

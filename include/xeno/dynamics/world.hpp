@@ -1913,7 +1913,7 @@ template <class T>
 detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, const detail::SolverMass<T>& s, T h) const {
     detail::BodyIntegration<T> in;
     in.dynamic = b.type_ == BodyType::dynamic;
-    in.acceleration = settings_.gravity * b.gravity_scale_ + b.force_ * b.inverse_mass_;
+    in.acceleration = free_acceleration(b);  // solver bodies are awake
     // A torque accepted in one orientation may overflow I⁻¹τ in another: then ±inf per component
     // (never inf − inf), which integrate_velocity's caps bring back to a finite spin.
     in.angular_impulse_rate = detail::product_without_nan(s.inv_inertia, b.torque_);
