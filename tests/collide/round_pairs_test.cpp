@@ -548,6 +548,25 @@ TEST_CASE_TEMPLATE("a capsule along a box face and nearly parallel capsules get 
               .count == 0);
 }
 
+// Regression: a clipped part shorter than a thousandth of the pair's size counted as one point,
+// and the pair's size is the larger shape's: on a box of half size 400 (a game's ground) a
+// capsule with a core shorter than 0.57 m touched by one end, which rocked it end to end as it
+// rolled (tests/dynamics/motion_test.cpp).
+TEST_CASE_TEMPLATE("regression: a short capsule lying on a large box touches it by both ends of its core", T, float, double) {
+    const Shape<T> capsule = Capsule<T>(T(0.33), T(0.2));
+    const Quat<T> flat = about<T>(Vec3<T>::unit_x(), 1.5707963267948966);  // the core along z
+    for (const T half_size : {T(1), T(50), T(400), T(5000)}) {
+        CAPTURE(half_size);
+        const Shape<T> ground = Box<T>(half_size, T(0.5), half_size);
+        const ContactManifold<T> m =
+            generate_contacts(ground, at(T(0), T(-0.5), T(0)), capsule, at(T(0.5), T(0.329), T(0), flat), T(0.02));
+        REQUIRE(m.count == 2);
+        CHECK(near(std::min(m.points[0].point_b.z, m.points[1].point_b.z), T(-0.2), T(1e-4)));
+        CHECK(near(std::max(m.points[0].point_b.z, m.points[1].point_b.z), T(0.2), T(1e-4)));
+        for (int i = 0; i < 2; ++i) CHECK(near(m.points[i].depth, T(0.001), T(2e-4)));
+    }
+}
+
 TEST_CASE_TEMPLATE("intersect agrees with collide on the closed-form pairs and on boxes", T, float, double) {
     scenes::Random rng(1203);
     int hits = 0;

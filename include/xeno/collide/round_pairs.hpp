@@ -369,8 +369,11 @@ ContactManifold<typename A::scalar_type> round_manifold(const MinkowskiDifferenc
             ++count;
         }
     };
-    const T short_span = T(1e-3) * md.scale();  // shorter clipped parts count as one point
+    // Shorter clipped parts count as one point: a thousandth of the round shape's own size, never
+    // of the pair's (a 400 m ground made capsules shorter than 0.57 m touch it by one point, which
+    // rocked them end to end as they rolled and let them spin 7 % faster than they rolled).
     const T u_length = length(p.u);
+    const T short_span = std::max(T(1e-3) * (u_length + p.radius_segment), touching_distance(md.scale()));
     if (p.round_round) {
         // Nearly parallel capsules side by side (within about 6°, as Capsule::support_face): B's
         // ends within A's extent, each at its own distance from A's core.
