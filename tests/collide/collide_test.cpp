@@ -71,6 +71,39 @@ TEST_CASE_TEMPLATE("refined depth is never below the exact minimum and is closer
     CHECK(quantile(refined_ratio, 0.5) < T(1.001));
 }
 
+// Regression: the tolerances of refinement, MPR and the least-depth expansion were fractions of
+// the pair's size, the sum of both shapes' radii, so the larger shape set them. A 10 cm hull at
+// the edge of a box of half size 400: refinement took the box's face up to 6.5 cm deeper than
+// the least depth, and in float MPR stopped 5.7 mm short and missed overlaps that deep. The same
+// poses against the edge of a 1 m box are the reference: the geometry near the edge is the same.
+TEST_CASE_TEMPLATE("regression: a small hull at the edge of a 400 m box overlaps it as at the edge of a 1 m box", T, float,
+                   double) {
+    const Shape<T> hull = make_box_polyhedron(Vec3<T>{T(0.05), T(0.03), T(0.04)});
+    scenes::Random rng(11);
+    const T round_off = std::is_same_v<T, float> ? T(1.5e-3) : T(1e-6);  // 16 ε × 566 m, the pair's size
+    int compared = 0;
+    for (int k = 0; k < 4000; ++k) {
+        const Vec3<T> offset = rng.in_box(Vec3<T>::one() * T(0.06));
+        const Quat<T> turn = rng.rotation<T>();
+        T depth[2];
+        for (int i = 0; i < 2; ++i) {
+            const T half_size = i == 0 ? T(1) : T(400);
+            const Penetration<T> p = collide(Shape<T>(Box<T>(half_size, half_size, half_size)), at(T(0), T(0), T(0)), hull,
+                                             Transform<T>{Vec3<T>{half_size, half_size, T(0)} + offset, turn});
+            depth[i] = p.hit ? p.depth : T(-1);
+        }
+        if (!(depth[0] > round_off && depth[0] < T(0.02))) continue;  // the contacts of a hull against a ledge
+        CAPTURE(k);
+        CAPTURE(depth[0]);
+        CAPTURE(depth[1]);
+        // Each within 1 % of the least depth (the expansion's stop), the larger pair's also within
+        // round-off at its coordinates, once for MPR's stop and once for the expansion's.
+        CHECK(std::abs(depth[1] - depth[0]) <= T(2) * round_off + T(0.02) * depth[0]);
+        ++compared;
+    }
+    CHECK(compared > 800);
+}
+
 TEST_CASE_TEMPLATE("a box resting on a box gets four points at once", T, float, double) {
     const Shape<T> cube = Box<T>(T(0.5), T(0.5), T(0.5));
     const ContactManifold<T> m = generate_contacts(cube, at(T(0), T(0), T(0)), cube, at(T(0), T(0.99), T(0)), T(0.02));

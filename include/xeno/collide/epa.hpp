@@ -274,7 +274,7 @@ int expand_to_least_depth(const MinkowskiDifference<A, B>& md, const Vec3<typena
     using T = typename A::scalar_type;
     constexpr T relative = T(0.01);
     // Below this the support distances are round-off (MPR's own convergence tolerance, mpr.hpp).
-    const T absolute = (std::is_same_v<T, float> ? T(1e-5) : T(1e-7)) * md.scale();
+    const T absolute = std::max((std::is_same_v<T, float> ? T(1e-5) : T(1e-7)) * md.tolerance_scale(), md.round_off());
     ExpandingPolytope<T> polytope;
     if (!polytope.start(simplex, md.scale())) return 0;
     int queries = 0;

@@ -245,11 +245,12 @@ Penetration<typename A::scalar_type> mpr(const MinkowskiDifference<A, B>& md, bo
             for (int i = 0; i < 4; ++i) simplex[i] = tetrahedron[i].v;
     };
     const T scale = md.scale();
-    // Convergence within 1e-7 of the pair's size in double (1e-5 in float): on a curved surface
-    // the portal must shrink to about sqrt(8 R tau) before it is that flat, and below 1e-7 its
-    // triangles turn to slivers in double's round-off before they get there (measured: with 1e-9,
-    // 0.5 % of near-touching sphere pairs never converged).
-    const T tolerance = std::max(ScalarTraits<T>::geometric_tolerance, T(1e-7)) * scale;
+    // Convergence within 1e-7 of the pair's size in double (1e-5 in float), the smaller shape's
+    // when the two differ (MinkowskiDifference::tolerance_scale), never below round-off at the
+    // pair's coordinates: on a curved surface the portal must shrink to about sqrt(8 R tau) before
+    // it is that flat, and below 1e-7 its triangles turn to slivers in double's round-off before
+    // they get there (measured: with 1e-9, 0.5 % of near-touching sphere pairs never converged).
+    const T tolerance = std::max(std::max(ScalarTraits<T>::geometric_tolerance, T(1e-7)) * md.tolerance_scale(), md.round_off());
     const T tiny_normal_sq = square(T(16) * ScalarTraits<T>::epsilon * scale * scale);
     bool hit = false;
     Vec3<T> last_good_n{};
