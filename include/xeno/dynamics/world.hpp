@@ -521,6 +521,7 @@ private:
     /// A joint acts while it lives and both its bodies are enabled (set_enabled).
     bool joint_active(const Joint<T>& j) const { return j.alive && bodies_[j.a.index].enabled_ && bodies_[j.b.index].enabled_; }
     T speed_limit(const Body<T>& b) const { return b.fast_ ? detail::max_setting_length<T>() : settings_.max_linear_speed; }
+    detail::SpinCap<T> spin_cap(const Body<T>& b, T dt) const;
     /// m/s²: what gravity and the applied force do to b's velocity (zero unless dynamic and awake).
     Vec3<T> free_acceleration(const Body<T>& b) const {
         if (b.type_ != BodyType::dynamic || !b.awake_) return Vec3<T>::zero();
@@ -1692,7 +1693,7 @@ void World<T>::prepare(T dt) {
             // accepted at the door, and a kinematic body at 1e308 m/s made every row it touched
             // NaN (found by the world fuzzer).
             s.v = detail::capped_length(b.linear_velocity_, speed_limit(b));
-            s.w = detail::capped_length(b.angular_velocity_, settings_.max_rotation_per_step / dt);
+            s.w = detail::capped_spin(b.angular_velocity_, spin_cap(b, dt), b.orientation_);
             detail::SolverMass<T>& m = solver_masses_[k + 1];
             m.inv_mass = b.inverse_mass_;
             m.inv_inertia = b.type_ == BodyType::dynamic ? b.inverse_inertia_world() : Mat3<T>::zero();
@@ -1907,6 +1908,27 @@ T World<T>::twist_lever(Contact<T>& contact, T face_a, T face_b) {
     return contact.twist_lever;
 }
 
+/// The spin caps of `b` over steps of dt (detail::SpinCap): the surface of a sphere, capsule,
+/// cylinder or cone stays in place as it turns about its centre or axis, so only that spin may
+/// exceed max_rotation_per_step, up to the speed cap at its rim.
+template <class T>
+detail::SpinCap<T> World<T>::spin_cap(const Body<T>& b, T dt) const {
+    detail::SpinCap<T> cap;
+    cap.tumble = settings_.max_rotation_per_step / dt;
+    cap.roll = cap.tumble;
+    const Shape<T>* shape = b.convex_shape();
+    if (!shape) return cap;
+    const auto rim = [&](detail::SpinSymmetry symmetry, T radius) {
+        cap.symmetry = symmetry;
+        cap.roll = std::max(cap.tumble, speed_limit(b) / radius);
+    };
+    if (const auto* sphere = std::get_if<Sphere<T>>(shape)) rim(detail::SpinSymmetry::all, sphere->radius());
+    else if (const auto* capsule = std::get_if<Capsule<T>>(shape)) rim(detail::SpinSymmetry::axis_y, capsule->radius());
+    else if (const auto* cylinder = std::get_if<Cylinder<T>>(shape)) rim(detail::SpinSymmetry::axis_y, cylinder->radius());
+    else if (const auto* cone = std::get_if<Cone<T>>(shape)) rim(detail::SpinSymmetry::axis_y, cone->radius());
+    return cap;
+}
+
 /// What integrating body `b` (solver state `s`) over substeps of h needs, constant for the step:
 /// read once here rather than from the body every substep.
 template <class T>
@@ -1922,8 +1944,7 @@ detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, con
     in.gyroscopic = !b.isotropic_;
     in.linear_damping = b.linear_damping_;
     in.angular_damping = b.angular_damping_;
-    in.max_spin =
-        settings_.max_rotation_per_step / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1) / h;
+    in.spin_cap = spin_cap(b, h * static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1));
     in.max_speed = speed_limit(b);
     return in;
 }
@@ -1935,7 +1956,6 @@ void World<T>::solve(T dt) {
     const T h = dt / static_cast<T>(substeps);
     detail::SolvePass<T> pass{
         T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
-    const T max_rotation = settings_.max_rotation_per_step / static_cast<T>(substeps);
     const auto movers = static_cast<std::uint32_t>(solver_bodies_.size() - 1);
     for (int sub = 0; sub < substeps; ++sub) {
         parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
@@ -1967,8 +1987,7 @@ void World<T>::solve(T dt) {
                     detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
         }
         parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
-            for (std::uint32_t i = begin + 1; i <= end; ++i)
-                detail::integrate_position(solver_bodies_[i], h, integration_[i].max_speed, max_rotation);
+            for (std::uint32_t i = begin + 1; i <= end; ++i) detail::integrate_position(solver_bodies_[i], integration_[i], h);
         });
         pass.use_bias = false;
         // Joints relax in the last relax_iterations of these sweeps only: the first substep's extra
