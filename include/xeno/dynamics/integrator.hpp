@@ -54,15 +54,16 @@ struct BodyIntegration {
 template <class T>
 Vec3<T> capped_length(const Vec3<T>& v, T limit);
 
-/// ω within `cap` for a body at `orientation`: the part about the symmetry axis within cap.roll,
-/// the rest within cap.tumble. A spin within cap.tumble is returned as it is (the same bits).
+/// ω within `cap` for a body turned by `turn` from `orientation0`: the part about the symmetry
+/// axis within cap.roll, the rest within cap.tumble. A spin within cap.tumble is returned as it is
+/// (the same bits).
 template <class T>
-Vec3<T> capped_spin(const Vec3<T>& w, const SpinCap<T>& cap, const Quat<T>& orientation) {
+Vec3<T> capped_spin(const Vec3<T>& w, const SpinCap<T>& cap, const Quat<T>& turn, const Quat<T>& orientation0) {
     if (cap.symmetry == SpinSymmetry::all) return capped_length(w, cap.roll);
     const T length_sq = length_squared(w);
     if (cap.symmetry == SpinSymmetry::none || !(length_sq > cap.tumble * cap.tumble)) return capped_length(w, cap.tumble);
     const Vec3<T> u = capped_length(w, cap.roll);  // finite (even when w overflowed), so the split is
-    const Vec3<T> axis = rotate(orientation, Vec3<T>::unit_y());
+    const Vec3<T> axis = rotate(turn * orientation0, Vec3<T>::unit_y());
     const T along = dot(u, axis);
     return capped_length(u - axis * along, cap.tumble) + axis * std::clamp(along, -cap.roll, cap.roll);
 }
@@ -87,7 +88,7 @@ void integrate_velocity(SolverBody<T>& body, const BodyIntegration<T>& in, T h) 
     body.w += in.angular_impulse_rate * h;
     // A spin far above the cap (a huge torque or set_angular_velocity) would overflow the
     // gyroscopic term and the contact rows before integrate_position caps it: cap it here.
-    body.w = capped_spin(body.w, in.spin_cap, body.dq * in.orientation0);
+    body.w = capped_spin(body.w, in.spin_cap, body.dq, in.orientation0);
     if (in.gyroscopic) {
         // Implicit midpoint in the body frame: I (ω' − ω) + h ω_m × I ω_m = 0 with
         // ω_m = (ω + ω')/2. Dotting with I ω_m shows |I ω'| = |I ω|: the magnitude of the
@@ -136,7 +137,7 @@ Vec3<T> capped_length(const Vec3<T>& v, T limit) {
 template <class T>
 void integrate_position(SolverBody<T>& body, const BodyIntegration<T>& in, T h) {
     body.v = detail::capped_length(body.v, in.max_speed);
-    body.w = capped_spin(body.w, in.spin_cap, body.dq * in.orientation0);
+    body.w = capped_spin(body.w, in.spin_cap, body.dq, in.orientation0);
     body.dp += body.v * h;
     body.dq = integrate(body.dq, body.w, h);
 }

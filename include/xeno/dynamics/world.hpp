@@ -1693,7 +1693,7 @@ void World<T>::prepare(T dt) {
             // accepted at the door, and a kinematic body at 1e308 m/s made every row it touched
             // NaN (found by the world fuzzer).
             s.v = detail::capped_length(b.linear_velocity_, speed_limit(b));
-            s.w = detail::capped_spin(b.angular_velocity_, spin_cap(b, dt), b.orientation_);
+            s.w = detail::capped_spin(b.angular_velocity_, spin_cap(b, dt), Quat<T>::identity(), b.orientation_);
             detail::SolverMass<T>& m = solver_masses_[k + 1];
             m.inv_mass = b.inverse_mass_;
             m.inv_inertia = b.type_ == BodyType::dynamic ? b.inverse_inertia_world() : Mat3<T>::zero();
