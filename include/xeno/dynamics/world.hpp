@@ -509,6 +509,7 @@ private:
         PairKind kind;
     };
     void prepare_joints(T h);
+    void turn_joint_inertias();
     BodyId id_of(std::uint32_t slot) const { return {slot, bodies_[slot].generation_}; }
     /// An awake dynamic body, or a kinematic body with a velocity: something that can push.
     static bool active(const Body<T>& b) {
@@ -1964,6 +1965,22 @@ detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, con
     return in;
 }
 
+// A joint's bodies turn through the substeps, and a body's world inertia turns with it (Δq:
+// R I₀⁻¹ Rᵀ); only an anisotropic one's changes. Frozen at the step's start, a disc spinning at
+// 200 rad/s on a ball joint, precessing at 0.74 rad/s, met its joint's torque with the inertia of
+// an axis up to 0.7° behind, which fed its spin 0.35 % a second at any substep count.
+template <class T>
+void World<T>::turn_joint_inertias() {
+    const auto turned = [&](std::uint32_t k) {
+        const Mat3<T> r = to_matrix(solver_bodies_[k].dq);
+        return r * solver_masses_[k].inv_inertia * transpose(r);
+    };
+    for (detail::JointConstraint<T>& c : joint_rows_) {
+        if (c.a != 0 && integration_[c.a].gyroscopic) c.mass_a.inv_inertia = turned(c.a);
+        if (c.b != 0 && integration_[c.b].gyroscopic) c.mass_b.inv_inertia = turned(c.b);
+    }
+}
+
 template <class T>
 void World<T>::solve(T dt) {
     const bool soft = settings_.solver == SolverMode::soft_step;
@@ -1972,20 +1989,6 @@ void World<T>::solve(T dt) {
     detail::SolvePass<T> pass{
         T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
     const auto movers = static_cast<std::uint32_t>(solver_bodies_.size() - 1);
-    // A joint's bodies turn through the substeps, and a body's world inertia turns with it (Δq:
-    // R I₀⁻¹ Rᵀ); only an anisotropic one's changes. Frozen at the step's start, a disc spinning
-    // at 200 rad/s on a ball joint, precessing at 0.74 rad/s, met its joint's torque with the
-    // inertia of an axis up to 0.7° behind, which fed its spin 0.35 % a second at any substep count.
-    const auto turn_joint_inertias = [&] {
-        const auto turned = [&](std::uint32_t k) {
-            const Mat3<T> r = to_matrix(solver_bodies_[k].dq);
-            return r * solver_masses_[k].inv_inertia * transpose(r);
-        };
-        for (detail::JointConstraint<T>& c : joint_rows_) {
-            if (c.a != 0 && integration_[c.a].gyroscopic) c.mass_a.inv_inertia = turned(c.a);
-            if (c.b != 0 && integration_[c.b].gyroscopic) c.mass_b.inv_inertia = turned(c.b);
-        }
-    };
     for (int sub = 0; sub < substeps; ++sub) {
         parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
             for (std::uint32_t i = begin + 1; i <= end; ++i)
