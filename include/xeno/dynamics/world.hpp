@@ -1704,17 +1704,17 @@ void World<T>::prepare(T dt) {
             const std::uint32_t i = solver_order_[k];
             const Body<T>& b = bodies_[i];
             solver_index_[i] = k + 1;
-            detail::SolverBody<T>& s = solver_bodies_[k + 1];
-            // Velocities enter the solver within the integrator's caps: any finite velocity is
-            // accepted at the door, and a kinematic body at 1e308 m/s made every row it touched
-            // NaN (found by the world fuzzer).
-            s.v = detail::capped_length(b.linear_velocity_, speed_limit(b));
-            s.w = detail::capped_spin(b.angular_velocity_, spin_cap(b, dt), Quat<T>::identity(), b.orientation_);
             detail::SolverMass<T>& m = solver_masses_[k + 1];
             m.inv_mass = b.inverse_mass_;
             m.inv_inertia = b.type_ == BodyType::dynamic ? b.inverse_inertia_world() : Mat3<T>::zero();
             solver_slot_[k + 1] = i;
             integration_[k + 1] = integration_constants(b, m, h);
+            // Velocities enter the solver within the integrator's caps: any finite velocity is
+            // accepted at the door, and a kinematic body at 1e308 m/s made every row it touched
+            // NaN (found by the world fuzzer).
+            detail::SolverBody<T>& s = solver_bodies_[k + 1];
+            s.v = detail::capped_length(b.linear_velocity_, integration_[k + 1].max_speed);
+            s.w = detail::capped_spin(b.angular_velocity_, integration_[k + 1].spin_cap, Quat<T>::identity(), b.orientation_);
         }
     });
     stats_.awake_bodies = count;
