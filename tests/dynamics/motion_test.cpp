@@ -181,6 +181,17 @@ BodyId launch_roller(World<T>& w, Roller kind, T mu, T x0, T v, T spin) {
     def.material.friction = mu;
     return add_roller(w, kind, def, Quat<T>::from_axis_angle(Vec3<T>::unit_x(), radians(T(90))));
 }
+/// A static ramp of friction 0.6, 1 m thick, 2 half_length long and 10 m wide, tilted by angle
+/// about z so that it falls towards −x; returns its tilt.
+template <class T>
+Quat<T> add_ramp(World<T>& w, T angle, T half_length) {
+    BodyDef<T> ramp;
+    ramp.type = BodyType::static_body;
+    ramp.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);
+    ramp.material.friction = T(0.6);
+    w.create_body(Box<T>(half_length, T(0.5), T(5)), ramp);
+    return ramp.orientation;
+}
 double rolling_fraction(Roller kind) {
     const double r = 0.5, half = 0.5, pi = 3.14159265358979323846;
     const double m_cyl = pi * r * r * 2 * half, m_ball = 4.0 / 3.0 * pi * r * r * r;
@@ -201,12 +212,7 @@ TEST_CASE_TEMPLATE("a ball, a capsule and a cylinder roll down an incline at the
         CAPTURE(static_cast<int>(kind));
         World<T> w(C::settings());
         const T angle = radians(T(20));
-        const Quat<T> tilt = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);  // the slope falls towards −x
-        BodyDef<T> ramp;
-        ramp.type = BodyType::static_body;
-        ramp.orientation = tilt;
-        ramp.material.friction = T(0.6);  // rolling needs µ ≥ k tan θ (at most 0.26 here)
-        w.create_body(Box<T>(T(40), T(0.5), T(5)), ramp);
+        const Quat<T> tilt = add_ramp(w, angle, T(40));  // rolling needs µ ≥ k tan θ (at most 0.26 here)
         BodyDef<T> def;
         def.orientation = tilt;
         def.position = rotate(tilt, Vec3<T>{T(15), T(1), T(0)});
@@ -304,12 +310,7 @@ TEST_CASE_TEMPLATE("regression: a 5 cm ball rolls down an incline at 5/7 g sin �
     using T = typename C::T;
     World<T> w(C::settings());
     const T angle = radians(T(30)), r = T(0.05);
-    const Quat<T> tilt = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);  // the slope falls towards −x
-    BodyDef<T> ramp;
-    ramp.type = BodyType::static_body;
-    ramp.orientation = tilt;
-    ramp.material.friction = T(0.6);  // rolling needs µ ≥ 2/7 tan θ = 0.16
-    w.create_body(Box<T>(T(60), T(0.5), T(2)), ramp);
+    const Quat<T> tilt = add_ramp(w, angle, T(60));  // rolling needs µ ≥ 2/7 tan θ = 0.16
     BodyDef<T> def;
     def.orientation = tilt;
     def.position = rotate(tilt, Vec3<T>{T(50), T(0.5) + r, T(0)});
