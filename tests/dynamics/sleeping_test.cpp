@@ -316,3 +316,51 @@ TEST_CASE_TEMPLATE("a ball spinning in place stays awake: the turn counts as mov
         CHECK(std::abs(w.body(ball).angular_velocity().y - spin) < T(1e-6) * spin);
     }
 }
+
+namespace {
+
+// How far a unit box set down at rest on a ramp of `degrees` (friction `mu` on both) slides
+// along it in `seconds`, in the default settings (sleeping on) or with sleeping off.
+template <class T>
+double slide_down_ramp(bool sleeping, T degrees, T mu, T seconds) {
+    World<T> w(with_sleeping<T>(sleeping));
+    BodyDef<T> ramp;
+    ramp.type = BodyType::static_body;
+    ramp.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), radians(degrees));
+    ramp.material.friction = mu;
+    w.create_body(Box<T>(T(40), T(0.5), T(5)), ramp);
+    BodyDef<T> d;
+    d.orientation = ramp.orientation;
+    d.material.friction = mu;
+    d.position = rotate(ramp.orientation, Vec3<T>{T(10), T(1), T(0)});
+    const BodyId id = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    const Vec3<T> start = w.body(id).position();
+    test::simulate(w, seconds);
+    return double(length(w.body(id).position() - start));
+}
+
+}  // namespace
+
+// Regression: a body that starts from rest and speeds up slowly stays under the sleep speed
+// (5 cm/s) for the whole sleep time (0.5 s), so its island slept and it stopped for good. A box
+// 0.2° steeper than its friction angle (arctan 0.6 = 30.96°) accelerates at g (sin θ − µ cos θ)
+// = 0.04 m/s² and slept after 5 mm; µ = 0.57 on 30° (tan 30° = 0.577) gives 0.063 m/s² and it
+// slept after 8 mm. Asleep or awake, a box must slide what it slides with sleeping off, ½ a t².
+TEST_CASE_TEMPLATE("a box sliding slowly from rest down a ramp does not fall asleep", T, float, double) {
+    const double pi = 3.14159265358979323846;
+    struct Case {
+        double degrees, mu;
+    };
+    for (const Case c : {Case{31.16, 0.6}, Case{30, 0.57}}) {
+        const double theta = c.degrees * pi / 180, a = 9.81 * (std::sin(theta) - c.mu * std::cos(theta));
+        const double with_sleep = slide_down_ramp(true, T(c.degrees), T(c.mu), T(4));
+        const double without = slide_down_ramp(false, T(c.degrees), T(c.mu), T(4));
+        const double expected = 0.5 * a * 16.0;
+        CAPTURE(c.degrees);
+        CAPTURE(with_sleep);
+        CAPTURE(without);
+        CAPTURE(expected);
+        CHECK(std::abs(without - expected) <= 0.02 * expected);
+        CHECK(std::abs(with_sleep - without) <= 0.01 * expected);
+    }
+}
