@@ -249,3 +249,25 @@ TEST_CASE_TEMPLATE("a compound swept at a wall stops where its leading part touc
     CHECK_THROWS_AS(w.shape_cast(dumbbell, at(T(0), T(0), T(0)), Vec3<T>{T(0), std::numeric_limits<T>::infinity(), T(0)}),
                     InvalidArgument);
 }
+
+// Regression: the cast's tolerance is a fraction of the problem's size, and the whole translation
+// counted in it: a unit box 4.5 m above a ground box, swept down 1e6 m in float (1e10 m in
+// double), was reported overlapping the ground at the start (fraction 0). Now only the part of
+// the sweep where the bounding spheres meet is cast.
+TEST_CASE_TEMPLATE("a box swept a very long way down at the ground meets it where it is 4.5 m below", T, float, double) {
+    const Shape<T> a = Box<T>(T(0.5), T(0.5), T(0.5)), ground = Box<T>(T(20), T(1), T(20));
+    for (const T reach : {T(10), T(1e4), T(1e6), std::is_same_v<T, float> ? T(1e9) : T(1e10)}) {
+        CAPTURE(reach);
+        const std::optional<ShapeCastHit<T>> hit =
+            shape_cast(a, at(T(0), T(5), T(0)), Vec3<T>{T(0), -reach, T(0)}, ground, at(T(0), T(-1), T(0)));
+        REQUIRE(hit);
+        CHECK(!hit->initially_overlapping);
+        // The distance travelled, fraction × reach, is the 4.5 m gap (to the cast's tolerance at
+        // the trimmed sweep's scale, about 35 m here).
+        CHECK(std::abs(hit->fraction * reach - T(4.5)) < T(1e-3));
+        CHECK(length(hit->normal + Vec3<T>::unit_y()) < T(1e-3));
+    }
+    // Swept away from it, or past beside it, nothing.
+    CHECK(!shape_cast(a, at(T(0), T(5), T(0)), Vec3<T>{T(0), T(1e6), T(0)}, ground, at(T(0), T(-1), T(0))));
+    CHECK(!shape_cast(a, at(T(0), T(5), T(100)), Vec3<T>{T(0), T(-1e6), T(0)}, ground, at(T(0), T(-1), T(0))));
+}

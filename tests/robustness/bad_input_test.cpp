@@ -503,3 +503,58 @@ TEST_CASE_TEMPLATE("regression: collide and mpr reject a non-unit orientation in
     const Transform<T> nearly{Vec3<T>::zero(), Quat<T>{q.w * (T(1) + T(4) * ScalarTraits<T>::epsilon), q.x, q.y, q.z}};
     CHECK(rejection([&] { (void)collide(Shape<T>(box), nearly, Shape<T>(box), above); }) == "accepted");
 }
+
+TEST_CASE_TEMPLATE("regression: a subnormal mass, whose inverse overflows, is rejected by set_mass_properties and create_body", T,
+                   float, double) {
+    // Accepted before: the body's inverse mass was infinite, it hung still, ignoring gravity, a
+    // box landing on it froze in mid-air, and the world's own snapshot did not restore.
+    World<T> world;
+    const BodyId id = world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)));
+    Body<T>& b = world.body(id);
+    const T before = b.mass();
+    MassProperties<T> m = mass_properties(Box<T>(T(0.5), T(0.5), T(0.5)), T(1000));
+    m.mass = std::numeric_limits<T>::denorm_min();
+    CHECK_REJECTED(b.set_mass_properties(m), "Body::set_mass_properties", "1 / mass");
+    CHECK(b.mass() == before);
+    // In double a subnormal BodyDef::mass keeps a normal inertia (m × 0.4 × 1000²), so only
+    // 1 / mass overflows (in float the scaled inertia underflows first and is rejected as such).
+    if (std::is_same_v<T, double>) {
+        BodyDef<T> d;
+        d.mass = T(1e-310);
+        CHECK_REJECTED(world.create_body(Sphere<T>(T(1000)), d), "World::create_body", "1 / mass");
+    }
+    CHECK(world.body_count() == 1);
+}
+
+TEST_CASE_TEMPLATE("regression: a distance joint whose anchors lie beyond max_size apart or from their bodies is rejected", T,
+                   float, double) {
+    // Float: anchors 1e30 apart gave an infinite length, accepted, which froze both bodies and
+    // made the world's own snapshot unrestorable; an anchor 1e15 m out with length 1 froze them too.
+    World<T> world;
+    BodyDef<T> d;
+    d.position = {T(0), T(0.5), T(0)};
+    const BodyId a = world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    d.position = {T(2), T(0.5), T(0)};
+    const BodyId b = world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    const T far = std::is_same_v<T, float> ? T(1e30) : T(1e300);
+    CHECK_REJECTED(world.create_joint(JointDef<T>::distance(a, b, {T(0), T(0.5), T(0)}, {T(2), far, T(0)})),
+                   "World::create_joint", "anchor_b's distance from body b");
+    JointDef<T> out = JointDef<T>::distance(a, b, {T(0), T(0.5), T(0)}, {T(2), T(0.5), T(0)});
+    out.anchor_a = {T(0), T(2) * ScalarTraits<T>::max_size, T(0)};
+    CHECK_REJECTED(world.create_joint(out), "World::create_joint", "anchor_a's distance from body a");
+    out = JointDef<T>::distance(a, b, {T(0), T(0.5), T(0)}, {T(2), T(0.5), T(0)});
+    out.anchor_a = {-ScalarTraits<T>::max_size, T(0.5), T(0)};
+    out.anchor_b = {ScalarTraits<T>::max_size, T(0.5), T(0)};
+    CHECK_REJECTED(world.create_joint(out), "World::create_joint", "length");
+    // Nothing was half made: the first joint accepted takes the first slot.
+    CHECK(world.create_joint(JointDef<T>::distance(a, b, {T(0), T(0.5), T(0)}, {T(2), T(0.5), T(0)})).index == 0);
+}
+
+TEST_CASE_TEMPLATE("regression: reserve rejects counts no world can hold with InvalidArgument, not std::length_error", T, float,
+                   double) {
+    World<T> world;
+    CHECK_REJECTED(world.reserve(std::numeric_limits<std::size_t>::max()), "World::reserve", "bodies");
+    CHECK_REJECTED(world.reserve(0, std::numeric_limits<std::size_t>::max()), "World::reserve", "contacts");
+    world.reserve(100, 1000);
+    CHECK(world.body_count() == 0);
+}

@@ -386,12 +386,16 @@ void Body<T>::set_gravity_scale(T scale) {
 
 namespace detail {
 /// Checks the mass properties of a dynamic body whose shape reaches `radius` from its centre:
-/// mass finite and > 0, centre at the origin, inertia finite, symmetric (to round-off) and
-/// positive definite with a finite inverse. Reports (InvalidArgument) naming `where`; changes
-/// nothing, so callers check before they take any state (World::create_body does).
+/// mass finite and > 0 with a finite inverse (a subnormal mass has none: its body would hang
+/// still, ignoring gravity, and no snapshot of its world would restore), centre at the origin, inertia finite, symmetric (to
+/// round-off) and positive definite with a finite inverse. Reports (InvalidArgument) naming `where`; changes nothing, so callers
+/// check before they take any state (World::create_body does).
 template <class T>
 void check_mass_properties(const MassProperties<T>& m, T radius, const char* where) {
     require_positive(m.mass, where, "mass");
+    if (!std::isfinite(T(1) / m.mass))
+        report_invalid(where, "mass must be large enough for 1 / mass to be finite in this precision; mass",
+                       static_cast<double>(m.mass));
     if (!is_finite(m.center) || length(m.center) > T(1e-6) * (T(1) + radius))
         report_invalid(where, "center must be 0 (the body's position is its centre of mass); |center|",
                        static_cast<double>(length(m.center)));

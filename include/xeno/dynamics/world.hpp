@@ -260,7 +260,8 @@ public:
 
     std::size_t body_count() const { return bodies_.size() - free_slots_.size(); }
     /// Reserves room for this many bodies and contacts, so growing to them allocates once (the
-    /// query tree of static bodies grows as static bodies are created).
+    /// query tree of static bodies grows as static bodies are created). At most 2^32 − 2 bodies
+    /// and 2^30 contacts (InvalidArgument); std::bad_alloc when memory runs out.
     void reserve(std::size_t bodies, std::size_t contacts = 0);
     /// Calls f(BodyId, const Body<T>&) for every living body, in slot order.
     template <class F>
@@ -823,6 +824,14 @@ MassProperties<T> World<T>::dynamic_mass(const Shape<T>* shape, const Compound<T
 template <class T>
 void World<T>::reserve(std::size_t bodies, std::size_t contacts) {
     require_outside_filter("World::reserve");
+    // Beyond what a BodyId can index or a world can hold, the containers threw std::length_error
+    // (reserve(SIZE_MAX)); a count within these and beyond memory is std::bad_alloc, as for any container.
+    if (bodies > std::size_t(std::numeric_limits<std::uint32_t>::max() - 1))
+        detail::report_invalid("World::reserve", "bodies must be at most 2^32 - 2 (a BodyId's index); bodies",
+                               static_cast<double>(bodies));
+    if (contacts > std::size_t(detail::SettingsLimits::max_contact_pairs))
+        detail::report_invalid("World::reserve", "contacts must be at most 2^30 (max_contact_pairs' limit); contacts",
+                               static_cast<double>(contacts));
     bounds_.reserve(bodies);
     query_tree_for(BodyType::dynamic).reserve(bodies);
     previous_pose_.reserve(bodies);

@@ -75,12 +75,19 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
     j.collide_connected = def.collide_connected;
     j.local_anchor_a = a.local_point(def.anchor_a);
     j.local_anchor_b = b.local_point(def.type == JointType::distance ? def.anchor_b : def.anchor_a);
+    // An anchor farther than max_size from its body (1e6 m in float) is a lever the solver cannot
+    // use: a float distance joint anchored 1e15 m out froze both bodies in mid-air.
+    detail::require_at_most(length(j.local_anchor_a), ScalarTraits<T>::max_size, where, "anchor_a's distance from body a");
+    detail::require_at_most(length(j.local_anchor_b), ScalarTraits<T>::max_size, where, "anchor_b's distance from body b");
     if (def.type == JointType::hinge || def.type == JointType::prismatic || def.type == JointType::swing_twist)
         set_axis_limit_motor(j, def, a, b, where);
     j.relative_rotation = conjugate(a.orientation_) * b.orientation_;
     if (def.type == JointType::distance) {
         detail::require_finite(def.length, where, "length");
         j.length = def.length < T(0) ? distance(def.anchor_a, def.anchor_b) : def.length;
+        // The distance between the anchors can overflow though both are finite (1e30 apart in
+        // float); the world's own snapshot then refused the infinite length.
+        detail::require_at_most(j.length, ScalarTraits<T>::max_size, where, "length (given, or the anchors' distance)");
     }
     std::uint32_t slot;
     if (!free_joints_.empty()) {
