@@ -401,6 +401,14 @@ TEST_CASE_TEMPLATE("mesh bodies are static or kinematic, are seen by queries, an
     CHECK(near(down->hit.fraction, T(0.42), T(1e-4)));
     CHECK(near(down->hit.normal, Vec3<T>{T(0), T(-1), T(0)}, T(1e-4)));
     CHECK_FALSE(w.shape_cast(pill, Transform<T>{{T(0.37), T(-3), T(0.2)}, Quat<T>::identity()}, {T(0), T(10), T(0)}));
+    // Regression: swept down 1e6 m (float; 1e10 m double) it was reported overlapping the field at
+    // the start, the cast's tolerance (a fraction of a size that counted the whole sweep) being
+    // larger than the gap; only the part where the bounding spheres meet is cast now.
+    const T far = std::is_same_v<T, float> ? T(1e6) : T(1e10);
+    const auto long_down = w.shape_cast(pill, Transform<T>{{T(0.37), T(5), T(0.2)}, Quat<T>::identity()}, {T(0), -far, T(0)});
+    REQUIRE(long_down);
+    CHECK(!long_down->hit.initially_overlapping);
+    CHECK(near(long_down->hit.fraction * far, T(4.2), T(1e-3)));
     // A kinematic mesh lifts what rests on it.
     BodyDef<T> k;
     k.type = BodyType::kinematic;

@@ -298,7 +298,6 @@ std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>&
     const Vec3<T> step = pose_mesh.inverse_apply_direction(translation);
     Aabb<T> swept = world_bounds(a, local);
     swept.merge(world_bounds(a, Transform<T>{local.position + step, local.orientation}));
-    const Vec3<T> origin = pose_a.position;
     const Vec3<T> centre_a = pose_a.apply(interior_point(a));
     std::optional<ShapeCastHit<T>> best;
     const detail::ShapeRef<T> shape(a);  // every kind through one compiled copy (shape_ref.hpp)
@@ -307,18 +306,22 @@ std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>&
         for (Vec3<T>& v : placed.v) v = pose_mesh.apply(v);
         placed.normal = pose_mesh.apply_direction(t.normal);
         const Triangle<T> tri(placed, detail::closest_point_on_triangle(centre_a, placed.v[0], placed.v[1], placed.v[2]));
-        const auto support_c = [&](const Vec3<T>& v) {
-            detail::CastVertex<T> p;
-            p.a = rotate(pose_a.orientation, shape.support(inverse_rotate(pose_a.orientation, -v)));
-            p.b = tri.support(v) - origin;
-            p.c = p.b - p.a;
-            return p;
+        const auto cast = [&](const Transform<T>& from, const Vec3<T>& move) {
+            const Vec3<T> origin = from.position;
+            const auto support_c = [&](const Vec3<T>& v) {
+                detail::CastVertex<T> p;
+                p.a = rotate(from.orientation, shape.support(inverse_rotate(from.orientation, -v)));
+                p.b = tri.support(v) - origin;
+                p.c = p.b - p.a;
+                return p;
+            };
+            const T size = shape.bounding_radius() + tri.bounding_radius() + length(move) + length(tri.interior_point() - origin);
+            const Vec3<T> inside_a = from.apply(interior_point(a));
+            return detail::gjk_cast(support_c, tri.interior_point() - inside_a, size, from, move,
+                                    [&](const Transform<T>& at) { return detail::collide_pair(shape, at, tri, Transform<T>{}); });
         };
-        const T size =
-            shape.bounding_radius() + tri.bounding_radius() + length(translation) + length(tri.interior_point() - origin);
-        const std::optional<ShapeCastHit<T>> hit =
-            detail::gjk_cast(support_c, (tri.interior_point() - origin) - (centre_a - origin), size, pose_a, translation,
-                             [&](const Transform<T>& at) { return detail::collide_pair(shape, at, tri, Transform<T>{}); });
+        const std::optional<ShapeCastHit<T>> hit = detail::cast_where_spheres_meet(
+            tri.interior_point() - pose_a.position, shape.bounding_radius() + tri.bounding_radius(), pose_a, translation, cast);
         if (!hit || dot(hit->normal, placed.normal) > T(0)) return;  // missed, or met from behind
         if (!best || hit->fraction < best->fraction) best = hit;
     });

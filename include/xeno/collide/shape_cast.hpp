@@ -272,24 +272,26 @@ std::optional<std::pair<T, T>> sphere_sweep_span(const Vec3<T>& offset, T reach,
     return std::pair<T, T>{first, last};
 }
 
-/// shape_cast over a sweep the bounding spheres' span has already trimmed (see below).
-template <class T>
-std::optional<ShapeCastHit<T>> shape_cast_span(const Shape<T>& a, const Transform<T>& pose_a, const Vec3<T>& translation,
-                                               const Shape<T>& b, const Transform<T>& pose_b) {
-    const Vec3<T> origin = pose_a.position;  // every point below is relative to it
-    const auto support_c = [&](const Vec3<T>& v) {
-        detail::CastVertex<T> p;
-        p.a = rotate(pose_a.orientation, support(a, inverse_rotate(pose_a.orientation, -v)));
-        p.b = pose_b.position - origin + rotate(pose_b.orientation, support(b, inverse_rotate(pose_b.orientation, v)));
-        p.c = p.b - p.a;
-        return p;
-    };
-    // The tolerance on |v|: a fraction of the problem's size, as MPR's (ScalarTraits).
-    const T size = bounding_radius(a) + bounding_radius(b) + length(translation) + length(pose_b.position - origin);
-    const Vec3<T> centre_a = rotate(pose_a.orientation, interior_point(a));
-    const Vec3<T> centre_b = pose_b.position - origin + rotate(pose_b.orientation, interior_point(b));
-    return detail::gjk_cast(support_c, centre_b - centre_a, size, pose_a, translation,
-                            [&](const Transform<T>& at) { return collide(a, at, b, pose_b); });
+/// Runs `cast(from, move)` (a shape cast from pose `from` along `move`) over the part of the
+/// sweep of A from pose_a along `translation` in which A's bounding sphere (about pose_a's
+/// position) meets B's (`reach` the two radii, B's centre `offset` from pose_a's position), and
+/// gives its hit as a fraction of the whole sweep. The cast's tolerance is a fraction of the
+/// problem's size, translation included: over the whole of a long sweep (1e6 m in float, 1e10 m
+/// in double) it exceeded the gap, and a box 4.5 m above the ground was reported overlapping it.
+template <class T, class Cast>
+std::optional<ShapeCastHit<T>> cast_where_spheres_meet(const Vec3<T>& offset, T reach, const Transform<T>& pose_a,
+                                                       const Vec3<T>& translation, const Cast& cast) {
+    // The radii are bounds about each shape's centre; the slack covers their round-off.
+    const std::optional<std::pair<T, T>> span = sphere_sweep_span(offset, reach * (T(1) + T(1e-3)), translation);
+    if (!span) return std::nullopt;
+    const auto [first, last] = *span;
+    if (first == T(0) && last == T(1)) return cast(pose_a, translation);
+    std::optional<ShapeCastHit<T>> hit =
+        cast(Transform<T>{pose_a.position + translation * first, pose_a.orientation}, translation * (last - first));
+    if (!hit) return hit;
+    if (first > T(0)) hit->initially_overlapping = false;  // the spheres only meet there: round-off
+    hit->fraction = std::min(first + hit->fraction * (last - first), T(1));
+    return hit;
 }
 
 }  // namespace detail
@@ -297,30 +299,32 @@ std::optional<ShapeCastHit<T>> shape_cast_span(const Shape<T>& a, const Transfor
 /// Sweeps shape A from pose_a along `translation` (metres, world) against B resting at pose_b.
 /// Returns the first contact, or nothing when A passes B (or stops short of it). Shapes that
 /// overlap at the start give fraction 0 and `initially_overlapping`. Poses and the translation must
-/// be finite (InvalidArgument).
-///
-/// Only the part of the sweep in which the shapes' bounding spheres meet is cast: the cast's
-/// tolerance is a fraction of the problem's size, and with the whole translation in that size a
-/// long sweep (1e6 m in float, 1e10 m in double) made the tolerance larger than the gap, and a
-/// box 4.5 m above the ground was reported overlapping it at the start.
+/// be finite (InvalidArgument). Only the part of the sweep where the bounding spheres meet is
+/// cast (detail::cast_where_spheres_meet).
 template <class T>
 std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>& pose_a, const Vec3<T>& translation,
                                           const Shape<T>& b, const Transform<T>& pose_b) {
     detail::require_finite_pose(pose_a, "shape_cast", "pose_a");
     detail::require_finite_pose(pose_b, "shape_cast", "pose_b");
     detail::require_finite_xyz(translation, "shape_cast", "translation");
-    // The radii are bounds about each shape's origin; the slack covers their round-off.
-    const T reach = (bounding_radius(a) + bounding_radius(b)) * (T(1) + T(1e-3));
-    const std::optional<std::pair<T, T>> span = detail::sphere_sweep_span(pose_b.position - pose_a.position, reach, translation);
-    if (!span) return std::nullopt;
-    const auto [first, last] = *span;
-    if (first == T(0) && last == T(1)) return detail::shape_cast_span(a, pose_a, translation, b, pose_b);
-    const Transform<T> start{pose_a.position + translation * first, pose_a.orientation};
-    std::optional<ShapeCastHit<T>> hit = detail::shape_cast_span(a, start, translation * (last - first), b, pose_b);
-    if (!hit) return hit;
-    if (first > T(0)) hit->initially_overlapping = false;  // the spheres only meet there: round-off
-    hit->fraction = std::min(first + hit->fraction * (last - first), T(1));
-    return hit;
+    const auto cast = [&](const Transform<T>& from, const Vec3<T>& move) {
+        const Vec3<T> origin = from.position;  // every point below is relative to it
+        const auto support_c = [&](const Vec3<T>& v) {
+            detail::CastVertex<T> p;
+            p.a = rotate(from.orientation, support(a, inverse_rotate(from.orientation, -v)));
+            p.b = pose_b.position - origin + rotate(pose_b.orientation, support(b, inverse_rotate(pose_b.orientation, v)));
+            p.c = p.b - p.a;
+            return p;
+        };
+        // The tolerance on |v|: a fraction of the problem's size, as MPR's (ScalarTraits).
+        const T size = bounding_radius(a) + bounding_radius(b) + length(move) + length(pose_b.position - origin);
+        const Vec3<T> centre_a = rotate(from.orientation, interior_point(a));
+        const Vec3<T> centre_b = pose_b.position - origin + rotate(pose_b.orientation, interior_point(b));
+        return detail::gjk_cast(support_c, centre_b - centre_a, size, from, move,
+                                [&](const Transform<T>& at) { return collide(a, at, b, pose_b); });
+    };
+    return detail::cast_where_spheres_meet(pose_b.position - pose_a.position, bounding_radius(a) + bounding_radius(b), pose_a,
+                                           translation, cast);
 }
 
 /// A compound A (posed by its centre-of-mass frame, as a body) swept against B: the first touch of
