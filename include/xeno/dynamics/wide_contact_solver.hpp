@@ -37,7 +37,8 @@ struct WidePoint {
     WideVec3<V> r_a, r_b;    ///< m, centres of mass to the point
     WideVec3<V> rn_a, rn_b;  ///< r × n
     V adjusted_separation, normal_mass, normal_impulse, max_normal_impulse, step_impulse;
-    V approach;  ///< m/s, v_n at the impact (take_approach_wide; ContactConstraintPoint::relative_velocity)
+    V approach;  ///< m/s, v_n under gravity and applied forces alone, up to the impact (take_approach_wide)
+    V landing;   ///< m/s, v_n on reaching the surface from the impact substep's start (ContactConstraintPoint::relative_velocity)
 };
 
 /// A symmetric 3 × 3 matrix in lanes (a world inverse inertia): its upper triangle.
@@ -174,13 +175,27 @@ void warm_start_wide(const WideContact<T, W>& c, std::vector<SolverBody<T>>& bod
 /// holds the impulses of the other contacts too, and in a row of touching balls the second contact
 /// took as its approach the speed the first impact had just given the ball between them, and
 /// bounced it again (a ball striking three with e = 1 left them 3 times the energy it brought).
+/// The landing speed V kept for the rebound (set_rebounds) is taken from the point's gap s and
+/// approach v at the start of the substep in which it first carries impulse, by the energy the
+/// substeps' integrator keeps, ½V² = ½v² − a s + ½ a h v (a the normal acceleration): the
+/// approach with that substep's whole gain, v + a h, was up to g h off, depending on where in
+/// its substep the impact fell.
 template <class T, int W>
-void take_approach_wide(WideContact<T, W>& c, T h) {
+void take_approach_wide(WideContact<T, W>& c, const std::vector<SolverBody<T>>& bodies, T h) {
     using V = Wide<T, W>;
-    const V zero = V::splat(T(0)), gain = c.normal_acceleration * V::splat(h);
+    const V zero = V::splat(T(0)), two = V::splat(T(2)), gain = c.normal_acceleration * V::splat(h);
+    const WideBody<V> A = gather<T, W>(bodies, c.a, true), B = gather<T, W>(bodies, c.b, true);
+    const WideVec3<V> n_b = rotate(conjugate(B.dq), c.normal), n_a = rotate(conjugate(A.dq), c.normal);  // as solve_wide
+    const V moved = c.rolls ? dot(B.dp - A.dp, c.normal) + rolling_rise(c, n_a, n_b) : dot(B.dp - A.dp, c.normal);
     for (int i = 0; i < c.max_count; ++i) {
         WidePoint<V>& p = c.points[i];
-        p.approach = select(p.max_normal_impulse > zero, p.approach, p.approach + gain);
+        const V gap = max(moved + (dot(n_b, p.r_b) - dot(n_a, p.r_a)) + p.adjusted_separation, zero);
+        const V v = p.approach, half = V::splat(T(0.5));
+        const V energy = half * v * v - c.normal_acceleration * gap + half * gain * v;
+        const V landing = select(v + gain < zero, zero - sqrt(max(two * energy, zero)), v + gain);
+        const typename V::Mask struck = p.max_normal_impulse > zero;  // kept from the substep it first carried impulse
+        p.landing = select(struck, p.landing, landing);
+        p.approach = select(struck, p.approach, p.approach + gain);
     }
 }
 
@@ -343,7 +358,7 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
         p.adjusted_separation.set(l, q.adjusted_separation), p.normal_mass.set(l, q.normal_mass);
         p.normal_impulse.set(l, q.normal_impulse), p.max_normal_impulse.set(l, q.max_normal_impulse),
             p.step_impulse.set(l, q.step_impulse);
-        p.approach.set(l, q.relative_velocity);
+        p.approach.set(l, q.relative_velocity), p.landing.set(l, q.relative_velocity);
     }
     const Vec3<T> a1 = cross(k.rc_a, k.t1), a2 = cross(k.rc_a, k.t2), b1 = cross(k.rc_b, k.t1), b2 = cross(k.rc_b, k.t2);
     put(c.a1, a1), put(c.a2, a2), put(c.b1, b1), put(c.b2, b2);
@@ -366,7 +381,7 @@ void unpack_lane(const WideContact<T, W>& c, int l, ContactConstraint<T>& k) {
         q.normal_impulse = p.normal_impulse.get(l);
         q.max_normal_impulse = p.max_normal_impulse.get(l);
         q.step_impulse = p.step_impulse.get(l);
-        q.relative_velocity = p.approach.get(l);
+        q.relative_velocity = p.landing.get(l);
     }
     k.friction_1 = c.friction_1.get(l);
     k.friction_2 = c.friction_2.get(l);
@@ -427,12 +442,12 @@ public:
         bodies[0] = SolverBody<T>{};
     }
     /// take_approach_wide for the groups that bounce, once a substep (before its impulses).
-    void take_approach(T h, TaskSystem* tasks) {
+    void take_approach(const std::vector<SolverBody<T>>& bodies, T h, TaskSystem* tasks) {
         for (Single& c : overflow_)
-            if (c.bounces) take_approach_wide(c, h);
+            if (c.bounces) take_approach_wide(c, bodies, h);
         parallel_for(tasks, static_cast<std::uint32_t>(groups_.size()), pack_range, [&](std::uint32_t first, std::uint32_t last) {
             for (std::uint32_t g = first; g < last; ++g)
-                if (groups_[g].bounces) take_approach_wide(groups_[g], h);
+                if (groups_[g].bounces) take_approach_wide(groups_[g], bodies, h);
         });
     }
     /// Copies the impulses back into the scalar rows.

@@ -2006,7 +2006,7 @@ void World<T>::solve(T dt) {
                     detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
         });
         turn_joint_inertias();
-        if (!bouncing_rows_.empty()) wide_rows_.take_approach(h, tasks_.get());
+        if (!bouncing_rows_.empty()) wide_rows_.take_approach(solver_bodies_, h, tasks_.get());
         if (settings_.warm_starting) {
             for (const detail::JointConstraint<T>& c : joint_rows_)
                 detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
@@ -2049,7 +2049,7 @@ void World<T>::solve(T dt) {
         solver_bodies_[0] = detail::SolverBody<T>{};
     }
     wide_rows_.unpack(constraints_, tasks_.get());
-    detail::apply_restitution(constraints_, bouncing_rows_, solver_bodies_, solver_masses_, settings_.restitution_threshold);
+    detail::apply_restitution(constraints_, bouncing_rows_, solver_bodies_, solver_masses_, settings_.restitution_threshold, h);
 }
 
 template <class T>
