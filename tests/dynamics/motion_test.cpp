@@ -391,10 +391,11 @@ TEST_CASE_TEMPLATE("regression: short capsules roll on a large ground at their s
     }
 }
 
-TEST_CASE_TEMPLATE("a box dropped from h with restitution e bounces to e^2 h within 5 %", C, XENO_TEST_CONFIGS) {
-    using T = typename C::T;
-    const T h = T(2), e = T(0.6);
-    World<T> w(C::settings());
+namespace {
+// A ground box (top at y = 0) and a ball or a box of half size 0.5 above it, its bottom at h,
+// both with restitution e.
+template <class T>
+BodyId drop_above_ground(World<T>& w, T e, T h, bool box) {
     BodyDef<T> g;
     g.type = BodyType::static_body;
     g.position = {T(0), T(-0.5), T(0)};
@@ -403,7 +404,15 @@ TEST_CASE_TEMPLATE("a box dropped from h with restitution e bounces to e^2 h wit
     BodyDef<T> def;
     def.position = {T(0), T(0.5) + h, T(0)};
     def.material.restitution = e;
-    const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+    return box ? w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def) : w.create_body(Sphere<T>(T(0.5)), def);
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("a box dropped from h with restitution e bounces to e^2 h within 5 %", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    const T h = T(2), e = T(0.6);
+    World<T> w(C::settings());
+    const BodyId box = drop_above_ground(w, e, h, true);
     bool bounced = false;
     T apex = T(0);
     simulate(w, T(2.5), [&](int) {
@@ -470,15 +479,7 @@ TEST_CASE_TEMPLATE("a ball and a box dropped from 0.3 to 3 m bounce to e^2 h wit
     // the last step before it, height plus v²/2g (a 7 cm bounce moves 2.7 mm in its apex step).
     const auto apexes = [](T e, T h, bool box, T seconds) {
         World<T> w(C::settings());
-        BodyDef<T> g;
-        g.type = BodyType::static_body;
-        g.position = {T(0), T(-0.5), T(0)};
-        g.material.restitution = e;
-        w.create_body(Box<T>(T(10), T(0.5), T(10)), g);
-        BodyDef<T> def;
-        def.position = {T(0), T(0.5) + h, T(0)};
-        def.material.restitution = e;
-        const BodyId id = box ? w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def) : w.create_body(Sphere<T>(T(0.5)), def);
+        const BodyId id = drop_above_ground(w, e, h, box);
         std::vector<T> tops;
         T previous_vy = T(0), previous_y = T(0);
         simulate(w, seconds, [&](int) {
