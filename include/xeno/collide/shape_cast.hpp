@@ -251,10 +251,6 @@ std::optional<ShapeCastHit<T>> gjk_cast(const SupportC& support_c, const Vec3<T>
     return hit;
 }
 
-}  // namespace detail
-
-namespace detail {
-
 /// The part [first, last] of a sweep, in fractions of `translation`, in which two spheres of
 /// radii adding up to `reach` meet, the second resting `offset` from the first's start; nothing
 /// when they never do. A translation too long to measure in T (or none) gives the whole sweep.

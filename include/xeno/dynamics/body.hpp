@@ -387,9 +387,10 @@ void Body<T>::set_gravity_scale(T scale) {
 namespace detail {
 /// Checks the mass properties of a dynamic body whose shape reaches `radius` from its centre:
 /// mass finite and > 0 with a finite inverse (a subnormal mass has none: its body would hang
-/// still, ignoring gravity, and no snapshot of its world would restore), centre at the origin, inertia finite, symmetric (to
-/// round-off) and positive definite with a finite inverse. Reports (InvalidArgument) naming `where`; changes nothing, so callers
-/// check before they take any state (World::create_body does).
+/// still, ignoring gravity, and no snapshot of its world would restore), centre at the origin,
+/// inertia finite, symmetric (to round-off) and positive definite with a finite inverse. Reports
+/// (InvalidArgument) naming `where`; changes nothing, so callers check before they take any
+/// state (World::create_body does).
 template <class T>
 void check_mass_properties(const MassProperties<T>& m, T radius, const char* where) {
     require_positive(m.mass, where, "mass");
