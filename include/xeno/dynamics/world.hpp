@@ -2186,9 +2186,17 @@ void World<T>::update_sleep(T dt) {
         const std::uint32_t root = find(i);
         island_min[root] = std::min(island_min[root], b.sleep_time_);
     }
-    for (const Contact<T>& c : contacts_) {  // touching a moving kinematic body keeps an island awake
+    // An island that slides (World::sliding) or touches a moving kinematic body stays awake. The
+    // slide is looked at only where an awake island would otherwise sleep now, rarely a step.
+    const auto would_sleep = [&](std::uint32_t i) {
+        const Body<T>& b = bodies_[i];
+        return b.type_ == BodyType::dynamic && b.awake_ && island_min[find(i)] >= settings_.sleep_time;
+    };
+    for (const Contact<T>& c : contacts_) {
         if (!c.touching) continue;
-        if (sliding(c)) island_min[find(c.a.index)] = island_min[find(c.b.index)] = T(0);
+        if ((would_sleep(c.a.index) || would_sleep(c.b.index)) && sliding(c))
+            for (const std::uint32_t i : {c.a.index, c.b.index})
+                if (bodies_[i].type_ == BodyType::dynamic) island_min[find(i)] = T(0);
         for (const auto& [k, d] : {std::pair{c.a.index, c.b.index}, std::pair{c.b.index, c.a.index}}) {
             const Body<T>& kin = bodies_[k];
             if (kin.type_ == BodyType::kinematic &&
