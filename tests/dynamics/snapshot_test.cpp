@@ -12,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 
 using namespace xeno;
@@ -145,4 +146,116 @@ TEST_CASE_TEMPLATE("a world with a huge accumulated force or torque restores fro
         CHECK(is_finite(b.position()));
         CHECK(is_finite(b.linear_velocity()));
     });
+}
+
+// Regression: in float, a motor of "unlimited" force (FLT_MAX, or 1e30 N) pushed against its
+// slider's limit, or spun a hinged paddle into the ground at 1e6 rad/s, and a slider's limits set
+// 1e30 m out pulled its body there with an impulse of the same order: each stored motor, limit or
+// contact impulses beyond what restore_snapshot accepts (and joint_reaction reported +inf N), so
+// the world's own snapshot did not restore after the first or second step. (Double failed the
+// same way at motor speeds beyond 1e30, which create_joint now rejects: bad_input_test.cpp.) The
+// solver now caps a limit and a motor at the impulse that changes the bodies' speed by max_size,
+// a limit's pull at the speed cap (as a stretched point row's), and a motor's speed at what the
+// integrator lets the bodies reach.
+TEST_CASE_TEMPLATE("motors of unlimited force and limits far away leave a world whose own snapshot restores", T, float, double) {
+    const T unlimited = std::numeric_limits<T>::max();
+    for (const std::string kind : {"slider motor into its limit", "hinge motor into the ground", "slider limits 1e30 m out"}) {
+        CAPTURE(kind);
+        const bool hinge = kind[0] == 'h', far_limits = kind[14] == '1';
+        World<T> original;
+        BodyDef<T> d;
+        d.type = BodyType::static_body;
+        d.position = {T(0), T(-1), T(0)};
+        original.create_body(Box<T>(T(20), T(1), T(20)), d);
+        d.position = {T(0), T(2), T(0)};
+        const BodyId pivot = original.create_body(Box<T>(T(0.5), T(0.1), T(0.5)), d);
+        d.type = BodyType::dynamic;
+        d.position = {T(1.5), T(2), T(0)};
+        const BodyId paddle = original.create_body(Box<T>(T(1.5), T(0.1), T(0.3)), d);
+        JointDef<T> j = hinge ? JointDef<T>::hinge(pivot, paddle, {T(0), T(2), T(0)}, {T(0), T(0), T(1)})
+                              : JointDef<T>::prismatic(pivot, paddle, {T(0), T(2), T(0)}, {T(1), T(0), T(0)});
+        j.enable_motor = !far_limits;
+        // Into the ground (rad/s) or into the limit (m/s); in double also at the top of the range.
+        j.motor_speed = std::is_same_v<T, float> ? (hinge ? T(1e6) : T(1000)) : detail::max_setting_length<T>();
+        j.max_motor_torque = j.max_motor_force = unlimited;
+        j.enable_limit = !hinge;
+        j.lower_translation = far_limits ? T(1e30) : T(-1);
+        j.upper_translation = far_limits ? T(1e30) : T(1);
+        const JointId joint = original.create_joint(j);
+        for (int step = 0; step < 20; ++step) {
+            CAPTURE(step);
+            original.step(T(1) / T(60));
+            const JointReaction<T> reaction = original.joint_reaction(joint);
+            REQUIRE(is_finite(reaction.force));
+            REQUIRE(is_finite(reaction.torque));
+            World<T> copy;
+            REQUIRE_NOTHROW(restore_snapshot(copy, save_snapshot(original)));
+            REQUIRE(state_hash(copy) == state_hash(original));
+        }
+    }
+}
+
+// Regression: two frictions of 1e20 (float) or 1e200 (double), each accepted, were combined as
+// √(µ_a µ_b) with an overflowing product: the contact's friction was +inf, its bound inf · 0 = NaN,
+// the step's last defence froze the box where it was, and the world's own snapshot did not
+// restore. √µ_a √µ_b does not overflow: such a box grips as one at µ = 1e10 does.
+TEST_CASE_TEMPLATE("frictions whose product overflows combine to a finite µ: the box grips and the snapshot restores", T, float,
+                   double) {
+    const T huge = std::is_same_v<T, float> ? T(1e20) : T(1e200);
+    CHECK(combined_friction(Material<T>{huge, T(0)}, Material<T>{huge, T(0)}) == doctest::Approx(huge).epsilon(1e-6));
+    const T most = std::numeric_limits<T>::max();
+    CHECK(std::isfinite(combined_friction(Material<T>{most, T(0)}, Material<T>{most, T(0)})));
+    const auto thrown = [](T friction, World<T>& world) {
+        BodyDef<T> d;
+        d.type = BodyType::static_body;
+        d.position = {T(0), T(-1), T(0)};
+        d.material.friction = friction;
+        world.create_body(Box<T>(T(20), T(1), T(20)), d);
+        d.type = BodyType::dynamic;
+        d.position = {T(0), T(0.6), T(0)};
+        d.linear_velocity = {T(5), T(-3), T(0)};
+        return world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    };
+    World<T> gripping, reference;
+    const BodyId box = thrown(huge, gripping), reference_box = thrown(T(1e10), reference);
+    for (int step = 0; step < 60; ++step) {
+        gripping.step(T(1) / T(60));
+        reference.step(T(1) / T(60));
+        World<T> copy;
+        REQUIRE_NOTHROW(restore_snapshot(copy, save_snapshot(gripping)));
+    }
+    const Vec3<T> p = gripping.body(box).position(), q = reference.body(reference_box).position();
+    CHECK(p.x > T(0.05));  // it moved before it gripped (frozen, it stayed at 0)
+    CHECK(p.x == doctest::Approx(q.x).epsilon(1e-3));
+    CHECK(p.y == doctest::Approx(q.y).epsilon(1e-3));
+}
+
+// Regression: a box welded to two static bodies at anchors 1e5 m apart (double) is held by joints
+// set against each other; their impulses grew past what restore_snapshot accepted within five
+// steps, so the world's own snapshot did not restore. A joint's impulses are now capped per
+// substep (a velocity change of half max_setting_length), and restore asks only that a warm-start
+// impulse change its bodies' velocity by a finite amount (docs/robustness.md).
+TEST_CASE_TEMPLATE("joints set against each other leave a world whose own snapshot restores", T, float, double) {
+    for (const T apart : {T(1), T(1e3), T(1e5)}) {
+        CAPTURE(apart);
+        World<T> world;
+        BodyDef<T> d;
+        d.type = BodyType::static_body;
+        d.position = {T(0), T(4), T(0)};
+        const BodyId left = world.create_body(Box<T>(T(0.5), T(0.2), T(0.3)), d);
+        d.position = {T(2), T(2), T(0)};
+        const BodyId right = world.create_body(Box<T>(T(0.5), T(0.2), T(0.3)), d);
+        d.type = BodyType::dynamic;
+        d.position = {T(1), T(3), T(0)};
+        const BodyId box = world.create_body(Box<T>(T(0.5), T(0.2), T(0.3)), d);
+        world.create_joint(JointDef<T>::fixed(left, box, {T(0), T(4), T(0)}));
+        world.create_joint(JointDef<T>::fixed(right, box, {T(2) + apart, T(2), T(0)}));
+        for (int step = 0; step < 30; ++step) {
+            CAPTURE(step);
+            world.step(T(1) / T(60));
+            REQUIRE(is_finite(world.body(box).position()));
+            World<T> copy;
+            REQUIRE_NOTHROW(restore_snapshot(copy, save_snapshot(world)));
+        }
+    }
 }

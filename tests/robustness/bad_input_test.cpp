@@ -540,12 +540,21 @@ TEST_CASE_TEMPLATE("regression: a distance joint whose anchors lie beyond max_si
     CHECK_REJECTED(world.create_joint(JointDef<T>::distance(a, b, {T(0), T(0.5), T(0)}, {T(2), far, T(0)})),
                    "World::create_joint", "anchor_b's distance from body b");
     JointDef<T> out = JointDef<T>::distance(a, b, {T(0), T(0.5), T(0)}, {T(2), T(0.5), T(0)});
-    out.anchor_a = {T(0), T(2) * ScalarTraits<T>::max_size, T(0)};
+    out.anchor_a = {T(0), T(2) * detail::max_joint_lever<T>(), T(0)};
+    CHECK_REJECTED(world.create_joint(out), "World::create_joint", "anchor_a's distance from body a");
+    // Double took anchors up to max_size (1e50) out: one 1e30 m out on a light box spun it until
+    // its contacts overflowed to inf. Both precisions now stop at max_joint_lever (1e6 m).
+    out.anchor_a = {T(0), T(1e7), T(0)};
     CHECK_REJECTED(world.create_joint(out), "World::create_joint", "anchor_a's distance from body a");
     out = JointDef<T>::distance(a, b, {T(0), T(0.5), T(0)}, {T(2), T(0.5), T(0)});
-    out.anchor_a = {-ScalarTraits<T>::max_size, T(0.5), T(0)};
-    out.anchor_b = {ScalarTraits<T>::max_size, T(0.5), T(0)};
+    out.length = T(2) * ScalarTraits<T>::max_size;
     CHECK_REJECTED(world.create_joint(out), "World::create_joint", "length");
+    if (std::is_same_v<T, float>) {  // the anchors' distance, 2e6 m, is beyond float's max_size
+        out.length = T(-1);
+        out.anchor_a = {-detail::max_joint_lever<T>(), T(0.5), T(0)};
+        out.anchor_b = {detail::max_joint_lever<T>(), T(0.5), T(0)};
+        CHECK_REJECTED(world.create_joint(out), "World::create_joint", "length");
+    }
     // Nothing was half made: the first joint accepted takes the first slot.
     CHECK(world.create_joint(JointDef<T>::distance(a, b, {T(0), T(0.5), T(0)}, {T(2), T(0.5), T(0)})).index == 0);
 }
@@ -557,4 +566,29 @@ TEST_CASE_TEMPLATE("regression: reserve rejects counts no world can hold with In
     CHECK_REJECTED(world.reserve(0, std::numeric_limits<std::size_t>::max()), "World::reserve", "contacts");
     world.reserve(100, 1000);
     CHECK(world.body_count() == 0);
+}
+
+TEST_CASE_TEMPLATE(
+    "regression: a motor speed beyond the range of a speed setting is rejected by create_joint and set_joint_motor", T, float,
+    double) {
+    // A float slider driven at 1e10 m/s left its body at 5e9 m/s after one step and a motor
+    // impulse no snapshot of the world restored; speeds now stay within max_setting_length.
+    World<T> world;
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    const BodyId a = world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    d.type = BodyType::dynamic;
+    d.position = {T(2), T(0), T(0)};
+    const BodyId b = world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    const T too_fast = T(2) * detail::max_setting_length<T>();
+    JointDef<T> slider = JointDef<T>::prismatic(a, b, {T(0), T(0), T(0)}, {T(1), T(0), T(0)});
+    slider.enable_motor = true;
+    slider.max_motor_force = T(100);
+    slider.motor_speed = -too_fast;
+    CHECK_REJECTED(world.create_joint(slider), "World::create_joint", "motor_speed");
+    slider.motor_speed = detail::max_setting_length<T>();
+    const JointId joint = world.create_joint(slider);
+    CHECK(joint.index == 0);  // nothing was half made by the rejected one
+    CHECK_REJECTED(world.set_joint_motor(joint, true, too_fast, T(100)), "World::set_joint_motor", "speed");
+    CHECK(world.joint(joint).motor_speed == detail::max_setting_length<T>());
 }

@@ -385,6 +385,23 @@ void Body<T>::set_gravity_scale(T scale) {
 }
 
 namespace detail {
+/// Bounds of what one unit of impulse does to body b: the spin (rad/s per N·m·s), |I⁻¹| taken as
+/// the sum of its rows' largest components (never below its norm), and the speed at any point of
+/// the body (m/s per N·s), 1/m + |I⁻¹| r² with r the bounding radius (or a farther lever).
+/// restore_snapshot asks that the warm-start impulses give a finite velocity change by them; the
+/// joint solver caps its impulses by the same measures (JointConstraint::max_linear_impulse).
+template <class T>
+T spin_per_impulse(const Body<T>& b) {
+    const Mat3<T> i = b.inverse_inertia_local();
+    return max_component(abs(i[0])) + max_component(abs(i[1])) + max_component(abs(i[2]));
+}
+
+template <class T>
+T speed_per_impulse(const Body<T>& b, T lever = T(0)) {  ///< at `lever` (m) from the centre if farther
+    const T r = std::max(b.bounding_radius(), lever);
+    return b.inverse_mass() + spin_per_impulse(b) * r * r;
+}
+
 /// Checks the mass properties of a dynamic body whose shape reaches `radius` from its centre:
 /// mass finite and > 0 with a finite inverse (a subnormal mass has none: its body would hang
 /// still, ignoring gravity, and no snapshot of its world would restore), centre at the origin,

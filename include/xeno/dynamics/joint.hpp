@@ -164,7 +164,45 @@ struct JointConstraint {
     /// cap: a faster pull would be cut by the integrator anyway). Also what keeps a joint torn
     /// 1e35 m apart (a teleport, a restored snapshot) from overflowing its impulse to inf − inf.
     T max_bias_speed = ScalarTraits<T>::infinity;
+    /// N·s and N·m·s: the impulses that would change the two bodies' speed (at the joint's levers)
+    /// or spin by max_setting_length / 2 (detail::speed_per_impulse, spin_per_impulse). What a
+    /// joint carries to the next step is capped by them (cap_joint_impulses): two welds set
+    /// against each other, or a motor of "unlimited" force (FLT_MAX) against a limit, stored
+    /// impulses that spun bodies until their contacts overflowed, or no snapshot restored.
+    T max_linear_impulse = ScalarTraits<T>::infinity;
+    T max_angular_impulse = ScalarTraits<T>::infinity;
+    /// The one of them along the axis (slider, distance joint: linear; hinge, swing-twist:
+    /// angular): the most a limit row holds in one substep; a motor gets half of it, so a limit
+    /// can stop it.
+    T max_axial_impulse = ScalarTraits<T>::infinity;
+    /// m/s or rad/s: the joint's motor speed within what the integrator lets the bodies reach (the
+    /// sum of their speed caps, or of their spin caps): faster, the integrator cut the motion
+    /// anyway, and a float hinge motor at 1e6 rad/s spinning a paddle into the ground fed the
+    /// contacts impulses no snapshot of the world would restore.
+    T motor_speed{};
 };
+
+/// m: the farthest a joint's anchor may lie from its body's centre, in both precisions (float's
+/// max_size). Its rows' angular terms grow with the lever squared: at 10³⁰ m in double, round-off
+/// alone in a distance row spun a light box until its contacts overflowed.
+template <class T>
+constexpr T max_joint_lever() {
+    return T(1e6);
+}
+
+/// Whether a joint's axial and motor impulses push along its axis (N·s) rather than turn about it.
+inline bool linear_axis(JointType type) { return type == JointType::prismatic || type == JointType::distance; }
+
+/// Caps the impulses joint j carries to the next step's warm start (JointConstraint::max_linear_impulse).
+/// Within the caps the impulses keep their bits.
+template <class T>
+void cap_joint_impulses(Joint<T>& j, const JointConstraint<T>& c) {
+    j.linear_impulse = capped_length(j.linear_impulse, c.max_linear_impulse);
+    j.angular_impulse = capped_length(j.angular_impulse, c.max_angular_impulse);
+    j.axial_impulse = clamp(j.axial_impulse, -c.max_axial_impulse, c.max_axial_impulse);
+    j.motor_impulse = clamp(j.motor_impulse, -c.max_axial_impulse, c.max_axial_impulse);
+    j.swing_impulse = std::min(j.swing_impulse, c.max_angular_impulse);
+}
 
 /// −[r]× M [r]×, the rotational part of a point row's 3×3 effective mass.
 template <class T>
@@ -285,8 +323,8 @@ void solve_slider(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, So
     j.linear_impulse = across;
     const T axial_mass = row_mass(c, la, rb, axis);
     if (j.enable_motor) {
-        const T limit = j.max_motor_torque * h;  // N (max_motor_force) · s
-        const T updated = clamp(j.motor_impulse - axial_mass * (speed(axis) - j.motor_speed), -limit, limit);
+        const T limit = std::min(j.max_motor_torque * h, c.max_axial_impulse / T(2));  // N (max_motor_force) · s
+        const T updated = clamp(j.motor_impulse - axial_mass * (speed(axis) - c.motor_speed), -limit, limit);
         push(axis, updated - j.motor_impulse);
         j.motor_impulse = updated;
     }
@@ -300,12 +338,13 @@ void solve_slider(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, So
         if (gap > T(0)) {
             bias = gap / h;
         } else if (use_bias) {
-            bias = c.limit_softness.bias_rate * gap;
+            bias = std::max(c.limit_softness.bias_rate * gap, -c.max_bias_speed);  // as the point rows' pull
             ms = c.limit_softness.mass_scale;
             is = c.limit_softness.impulse_scale;
         }
         const T current = j.axial_impulse * sign;
-        const T updated = std::max(current - axial_mass * ms * (sign * speed(axis) + bias) - is * current, T(0));
+        const T updated =
+            clamp(current - axial_mass * ms * (sign * speed(axis) + bias) - is * current, T(0), c.max_axial_impulse);
         push(axis, sign * (updated - current));
         j.axial_impulse = sign * updated;
     }
@@ -328,14 +367,14 @@ void solve_angular_limit(const JointConstraint<T>& c, SolverBody<T>& a, SolverBo
     if (gap > T(0)) {
         bias = gap * (T(1) / h);
     } else if (use_bias) {
-        bias = c.limit_softness.bias_rate * gap;
+        bias = std::max(c.limit_softness.bias_rate * gap, -c.max_bias_speed);  // as the point rows' pull
         ms = c.limit_softness.mass_scale;
         is = c.limit_softness.impulse_scale;
     }
     // The accumulated impulse of the active side stays >= 0 along sign · axis.
     const T current = accumulated * sign;
     const T cdot = sign * dot(b.w - a.w, axis);
-    const T updated = std::max(current - axial_mass * ms * (cdot + bias) - is * current, T(0));
+    const T updated = clamp(current - axial_mass * ms * (cdot + bias) - is * current, T(0), c.max_axial_impulse);
     const Vec3<T> impulse = axis * (sign * (updated - current));
     accumulated = sign * updated;
     a.w -= c.mass_a.inv_inertia * impulse;
@@ -434,8 +473,8 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
     const T axial_mass = kk > T(0) ? T(1) / kk : T(0);
     // Motor: drive the relative spin towards the target speed, torque-limited.
     if (j.enable_motor) {
-        const T cdot = dot(b.w - a.w, axis) - j.motor_speed;
-        const T limit = j.max_motor_torque * h;
+        const T cdot = dot(b.w - a.w, axis) - c.motor_speed;
+        const T limit = std::min(j.max_motor_torque * h, c.max_axial_impulse / T(2));
         const T updated = clamp(j.motor_impulse - axial_mass * cdot, -limit, limit);
         const Vec3<T> impulse = axis * (updated - j.motor_impulse);
         j.motor_impulse = updated;

@@ -22,9 +22,12 @@ struct Material {
 };
 
 /// The combined friction of a touching pair: √(µA µB).
+/// √(µ_a µ_b); where the product overflows (two frictions of 1e20 in float), √µ_a √µ_b, which
+/// does not. An infinite µ made a contact's friction bound inf · 0 = NaN and froze the body.
 template <class T>
 T combined_friction(const Material<T>& a, const Material<T>& b) {
-    return std::sqrt(a.friction * b.friction);
+    const T product = a.friction * b.friction;
+    return std::isfinite(product) ? std::sqrt(product) : std::sqrt(a.friction) * std::sqrt(b.friction);
 }
 
 /// The combined restitution of a touching pair: max(eA, eB).

@@ -2050,6 +2050,7 @@ void World<T>::solve(T dt) {
     }
     wide_rows_.unpack(constraints_, tasks_.get());
     detail::apply_restitution(constraints_, bouncing_rows_, solver_bodies_, solver_masses_, settings_.restitution_threshold, h);
+    for (const detail::JointConstraint<T>& c : joint_rows_) detail::cap_joint_impulses(joints_[c.joint], c);
 }
 
 template <class T>

@@ -34,7 +34,9 @@ void World<T>::set_axis_limit_motor(Joint<T>& j, const JointDef<T>& def, const B
         j.cone_angle = def.cone_angle;
     }
     const T max_motor = slider ? def.max_motor_force : def.max_motor_torque;
-    detail::require_finite(def.motor_speed, where, "motor_speed");
+    // A motor speed within the range a speed setting takes (1e6 in float): faster, the motor's
+    // rows lose every digit of the bodies' motion across the axis to round-off.
+    detail::require_at_most(def.motor_speed, detail::max_setting_length<T>(), where, "motor_speed", " m/s or rad/s");
     detail::require_non_negative(max_motor, where, slider ? "max_motor_force" : "max_motor_torque");
     j.enable_limit = def.enable_limit || def.type == JointType::swing_twist;  // a swing-twist joint is its limits
     j.lower_angle = lower;
@@ -75,10 +77,13 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
     j.collide_connected = def.collide_connected;
     j.local_anchor_a = a.local_point(def.anchor_a);
     j.local_anchor_b = b.local_point(def.type == JointType::distance ? def.anchor_b : def.anchor_a);
-    // An anchor farther than max_size from its body (1e6 m in float) is a lever the solver cannot
-    // use: a float distance joint anchored 1e15 m out froze both bodies in mid-air.
-    detail::require_at_most(length(j.local_anchor_a), ScalarTraits<T>::max_size, where, "anchor_a's distance from body a");
-    detail::require_at_most(length(j.local_anchor_b), ScalarTraits<T>::max_size, where, "anchor_b's distance from body b");
+    // An anchor farther than max_joint_lever from its body (10⁶ m) is a lever the solver cannot
+    // use: a float distance joint anchored 1e15 m out froze both bodies in mid-air, and in double
+    // one anchored 1e30 m out on a light box spun it until its contacts overflowed to inf.
+    detail::require_at_most(length(j.local_anchor_a), detail::max_joint_lever<T>(), where, "anchor_a's distance from body a",
+                            " m");
+    detail::require_at_most(length(j.local_anchor_b), detail::max_joint_lever<T>(), where, "anchor_b's distance from body b",
+                            " m");
     if (def.type == JointType::hinge || def.type == JointType::prismatic || def.type == JointType::swing_twist)
         set_axis_limit_motor(j, def, a, b, where);
     j.relative_rotation = conjugate(a.orientation_) * b.orientation_;
@@ -135,7 +140,7 @@ void World<T>::set_joint_motor(JointId id, bool enable, T speed, T max) {
     Joint<T>& j = joints_[checked(id, where)];
     if (j.type != JointType::hinge && j.type != JointType::prismatic)
         detail::report_invalid(where, "only hinges and sliders have a motor; joint type", static_cast<double>(j.type));
-    detail::require_finite(speed, where, "speed");
+    detail::require_at_most(speed, detail::max_setting_length<T>(), where, "speed", " m/s or rad/s");
     detail::require_non_negative(max, where, "max torque or force");
     j.enable_motor = enable;
     j.motor_speed = speed;
@@ -227,6 +232,23 @@ void World<T>::prepare_joints(T h) {
         c.softness = settings_.solver == SolverMode::soft_step ? soft : detail::Softness<T>::make(T(0.25) / h, T(1), h);
         c.limit_softness = settings_.solver == SolverMode::soft_step ? limit_soft : c.softness;
         c.max_bias_speed = settings_.max_linear_speed;
+        // A velocity change of half the largest speed setting (10⁶ m/s in float, 10³⁰ in double)
+        // per substep: at max_size's 10⁵⁰ in double, two joints set against each other spun a
+        // body fast enough that its contacts' impulses overflowed to inf.
+        const auto cap = [](T response) {
+            return response > T(0) ? T(0.5) * detail::max_setting_length<T>() / response : ScalarTraits<T>::infinity;
+        };
+        // At the joint's own levers: anchored 1e30 m out on a 0.24 kg box (double), a row at the
+        // bounding radius's cap spun the box so fast that its contacts overflowed to inf.
+        const T separation = length(c.delta_center + c.r_b0 - c.r_a0);
+        c.max_linear_impulse =
+            cap(detail::speed_per_impulse(a, length(c.r_a0) + separation) + detail::speed_per_impulse(b, length(c.r_b0)));
+        c.max_angular_impulse = cap(detail::spin_per_impulse(a) + detail::spin_per_impulse(b));
+        c.max_axial_impulse = detail::linear_axis(j.type) ? c.max_linear_impulse : c.max_angular_impulse;
+        const auto speed_cap = [&](std::uint32_t k) {  // a static stand-in (0) does not move
+            return k == 0 ? T(0) : j.type == JointType::prismatic ? integration_[k].max_speed : integration_[k].spin_cap.roll;
+        };
+        c.motor_speed = clamp(j.motor_speed, -(speed_cap(c.a) + speed_cap(c.b)), speed_cap(c.a) + speed_cap(c.b));
         if (!settings_.warm_starting) {
             j.linear_impulse = j.angular_impulse = Vec3<T>::zero();
             j.axial_impulse = j.motor_impulse = j.swing_impulse = T(0);
