@@ -488,6 +488,10 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
     // original would be: its caps and its last defence (World::discard_overflowed_solve) hold.
     const T most = ScalarTraits<T>::max_size;
     const T finite = ScalarTraits<T>::max;
+    const auto magnitude = [](const Vec3<T>& v) {  // |v| without squaring past the range (1e20 in float)
+        const T largest = max_component(abs(v));
+        return largest > T(0) ? largest * length(v / largest) : T(0);
+    };
     const auto linear_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) {
         return std::abs(impulse) * (detail::speed_per_impulse(w.bodies_[a]) + detail::speed_per_impulse(w.bodies_[b])) <= finite;
     };
@@ -550,7 +554,7 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
                  std::isfinite(p.step_impulse) && p.step_impulse >= T(0) && linear_ok(p.normal_impulse, c.a.index, c.b.index) &&
                  linear_ok(p.max_normal_impulse, c.a.index, c.b.index) && linear_ok(p.step_impulse, c.a.index, c.b.index);
         }
-        ok = ok && linear_ok(length(m.friction_impulse), c.a.index, c.b.index) &&
+        ok = ok && linear_ok(magnitude(m.friction_impulse), c.a.index, c.b.index) &&
              angular_ok(m.twist_impulse, c.a.index, c.b.index);
         // The pose the manifold was made at (World::reuse_contact): a wrong one only decides
         // whether the next step re-measures the points or collides the shapes again.
@@ -587,8 +591,8 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
                   std::isfinite(j.upper_angle) && j.lower_angle <= j.upper_angle && std::isfinite(j.motor_speed) &&
                   std::isfinite(j.max_motor_torque) && j.max_motor_torque >= T(0) && is_finite(j.linear_impulse) &&
                   is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) && std::isfinite(j.motor_impulse) &&
-                  linear_ok(length(j.linear_impulse), j.a.index, j.b.index) &&
-                  angular_ok(length(j.angular_impulse), j.a.index, j.b.index);
+                  linear_ok(magnitude(j.linear_impulse), j.a.index, j.b.index) &&
+                  angular_ok(magnitude(j.angular_impulse), j.a.index, j.b.index);
         // The axial row (limit or length) and the motor push along the axis (slider, distance) or
         // turn about it (hinge, swing-twist), each within what the solver caps it to (joint.hpp).
         ok = ok && (detail::linear_axis(j.type)
