@@ -21,9 +21,9 @@ struct Material {
     T restitution = T(0);  ///< 0 = no bounce, 1 = bounces back at the approach speed
 };
 
-/// The combined friction of a touching pair: √(µA µB).
-/// √(µ_a µ_b); where the product overflows (two frictions of 1e20 in float), √µ_a √µ_b, which
-/// does not. An infinite µ made a contact's friction bound inf · 0 = NaN and froze the body.
+/// The combined friction of a touching pair: √(µA µB), or √µA √µB where the product overflows
+/// (two frictions of 1e20 in float): an infinite µ made a contact's friction bound inf · 0 = NaN,
+/// which froze the body.
 template <class T>
 T combined_friction(const Material<T>& a, const Material<T>& b) {
     const T product = a.friction * b.friction;

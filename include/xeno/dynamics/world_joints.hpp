@@ -238,11 +238,11 @@ void World<T>::prepare_joints(T h) {
         const auto cap = [](T response) {
             return response > T(0) ? T(0.5) * detail::max_setting_length<T>() / response : ScalarTraits<T>::infinity;
         };
-        // At the joint's own levers: anchored 1e30 m out on a 0.24 kg box (double), a row at the
-        // bounding radius's cap spun the box so fast that its contacts overflowed to inf.
-        const T separation = length(c.delta_center + c.r_b0 - c.r_a0);
-        c.max_linear_impulse =
-            cap(detail::speed_per_impulse(a, length(c.r_a0) + separation) + detail::speed_per_impulse(b, length(c.r_b0)));
+        // At the joint's own levers (a slider's on A is r_A + d, d the anchors' separation):
+        // anchored 1e30 m out on a 0.24 kg box (double), a row at the bounding radius's cap spun
+        // the box so fast that its contacts overflowed to inf.
+        const T lever_a = length(c.r_a0) + (j.type == JointType::prismatic ? length(c.delta_center + c.r_b0 - c.r_a0) : T(0));
+        c.max_linear_impulse = cap(detail::speed_per_impulse(a, lever_a) + detail::speed_per_impulse(b, length(c.r_b0)));
         c.max_angular_impulse = cap(detail::spin_per_impulse(a) + detail::spin_per_impulse(b));
         c.max_axial_impulse = detail::linear_axis(j.type) ? c.max_linear_impulse : c.max_angular_impulse;
         const auto speed_cap = [&](std::uint32_t k) {  // a static stand-in (0) does not move
