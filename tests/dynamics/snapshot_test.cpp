@@ -44,6 +44,23 @@ std::vector<std::uint64_t> run(World<T>& w, int steps) {
     }
     return hashes;
 }
+// Steps `world` `steps` times at 60 Hz; after each step `check(step)` runs, then the world's own
+// snapshot must restore into a new world with the same state, every body's state finite.
+template <class T, class Check>
+void step_restoring(World<T>& world, int steps, Check check) {
+    for (int step = 0; step < steps; ++step) {
+        CAPTURE(step);
+        world.step(T(1) / T(60));
+        check(step);
+        world.for_each_body([](BodyId, const Body<T>& b) {
+            REQUIRE(is_finite(b.position()));
+            REQUIRE(is_finite(b.linear_velocity()));
+        });
+        World<T> copy;
+        REQUIRE_NOTHROW(restore_snapshot(copy, save_snapshot(world)));
+        REQUIRE(state_hash(copy) == state_hash(world));
+    }
+}
 }  // namespace
 
 TEST_CASE_TEMPLATE("stepping after a restore is bitwise identical to stepping the original", T, float, double) {
@@ -182,16 +199,11 @@ TEST_CASE_TEMPLATE("motors of unlimited force and limits far away leave a world 
         j.lower_translation = far_limits ? T(1e30) : T(-1);
         j.upper_translation = far_limits ? T(1e30) : T(1);
         const JointId joint = original.create_joint(j);
-        for (int step = 0; step < 20; ++step) {
-            CAPTURE(step);
-            original.step(T(1) / T(60));
+        step_restoring(original, 20, [&](int) {
             const JointReaction<T> reaction = original.joint_reaction(joint);
             REQUIRE(is_finite(reaction.force));
             REQUIRE(is_finite(reaction.torque));
-            World<T> copy;
-            REQUIRE_NOTHROW(restore_snapshot(copy, save_snapshot(original)));
-            REQUIRE(state_hash(copy) == state_hash(original));
-        }
+        });
     }
 }
 
@@ -218,24 +230,19 @@ TEST_CASE_TEMPLATE("frictions whose product overflows combine to a finite µ: th
     };
     World<T> gripping, reference;
     const BodyId box = thrown(huge, gripping), reference_box = thrown(T(1e10), reference);
-    for (int step = 0; step < 60; ++step) {
-        gripping.step(T(1) / T(60));
-        reference.step(T(1) / T(60));
-        World<T> copy;
-        REQUIRE_NOTHROW(restore_snapshot(copy, save_snapshot(gripping)));
-    }
+    step_restoring(gripping, 60, [&](int) { reference.step(T(1) / T(60)); });
     const Vec3<T> p = gripping.body(box).position(), q = reference.body(reference_box).position();
     CHECK(p.x > T(0.05));  // it moved before it gripped (frozen, it stayed at 0)
     CHECK(p.x == doctest::Approx(q.x).epsilon(1e-3));
     CHECK(p.y == doctest::Approx(q.y).epsilon(1e-3));
 }
 
-// Regression: a box welded to two static bodies at anchors 1e5 m apart (double) is held by joints
-// set against each other; their impulses grew past what restore_snapshot accepted within five
-// steps, so the world's own snapshot did not restore. A joint's impulses are now capped per
-// substep (a velocity change of half max_setting_length), and restore asks only that a warm-start
-// impulse change its bodies' velocity by a finite amount (docs/robustness.md).
-TEST_CASE_TEMPLATE("joints set against each other leave a world whose own snapshot restores", T, float, double) {
+// Regression: a box welded to two static bodies, one weld anchored 1e5 m from the box (double),
+// stored joint impulses past what restore_snapshot accepted within five steps, so the world's own
+// snapshot did not restore. A joint's impulses are now capped per substep (a velocity change of
+// half max_setting_length at its own levers), and restore asks only that a warm-start impulse
+// change its bodies' velocity by a finite amount (docs/robustness.md).
+TEST_CASE_TEMPLATE("a box welded with a far anchor leaves a world whose own snapshot restores", T, float, double) {
     for (const T apart : {T(1), T(1e3), T(1e5)}) {
         CAPTURE(apart);
         World<T> world;
@@ -250,13 +257,11 @@ TEST_CASE_TEMPLATE("joints set against each other leave a world whose own snapsh
         const BodyId box = world.create_body(Box<T>(T(0.5), T(0.2), T(0.3)), d);
         world.create_joint(JointDef<T>::fixed(left, box, {T(0), T(4), T(0)}));
         world.create_joint(JointDef<T>::fixed(right, box, {T(2) + apart, T(2), T(0)}));
-        for (int step = 0; step < 30; ++step) {
-            CAPTURE(step);
-            world.step(T(1) / T(60));
-            REQUIRE(is_finite(world.body(box).position()));
-            World<T> copy;
-            REQUIRE_NOTHROW(restore_snapshot(copy, save_snapshot(world)));
-        }
+        step_restoring(world, 30, [](int) {});
+        // Both welds were made where the box is: it stays there. With the anchor 1e5 m out the
+        // rows are too ill-conditioned to hold it (double wanders ~10 m, as before the caps;
+        // float now holds to 0.5 mm): not asserted, noted in docs/features.md.
+        if (apart <= T(1e3)) CHECK(length(world.body(box).position() - Vec3<T>{T(1), T(3), T(0)}) < T(0.01));
     }
 }
 
@@ -280,11 +285,6 @@ TEST_CASE_TEMPLATE("a kinematic press at 1e6 m/s leaves a world whose own snapsh
     d.angular_velocity = {T(0), T(40), T(0)};
     d.fast = true;
     world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
-    for (int step = 0; step < 20; ++step) {
-        CAPTURE(step);
-        world.step(T(1) / T(60));
-        REQUIRE(is_finite(world.body(pressed).position()));
-        World<T> copy;
-        REQUIRE_NOTHROW(restore_snapshot(copy, save_snapshot(world)));
-    }
+    step_restoring(world, 20, [](int) {});
+    CHECK(world.body(pressed).position().y < T(0.5));  // pressed down, not left where it rested
 }

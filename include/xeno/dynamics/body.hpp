@@ -396,10 +396,11 @@ T spin_per_impulse(const Body<T>& b) {
     return max_component(abs(i[0])) + max_component(abs(i[1])) + max_component(abs(i[2]));
 }
 
+/// `spin` is spin_per_impulse(b), taken by the caller, which needs it too (one inverse each).
 template <class T>
-T speed_per_impulse(const Body<T>& b, T lever = T(0)) {  ///< at `lever` (m) from the centre if farther
+T speed_per_impulse(const Body<T>& b, T spin, T lever = T(0)) {  ///< at `lever` (m) from the centre if farther
     const T r = std::max(b.bounding_radius(), lever);
-    return b.inverse_mass() + spin_per_impulse(b) * r * r;
+    return b.inverse_mass() + spin * r * r;
 }
 
 /// Checks the mass properties of a dynamic body whose shape reaches `radius` from its centre:

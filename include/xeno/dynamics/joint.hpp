@@ -166,8 +166,8 @@ struct JointConstraint {
     T max_bias_speed = ScalarTraits<T>::infinity;
     /// N·s and N·m·s: the impulses that would change the two bodies' speed (at the joint's levers)
     /// or spin by max_setting_length / 2 (detail::speed_per_impulse, spin_per_impulse). What a
-    /// joint carries to the next step is capped by them (cap_joint_impulses): two welds set
-    /// against each other, or a motor of "unlimited" force (FLT_MAX) against a limit, stored
+    /// joint carries to the next step is capped by them (cap_joint_impulses): a weld anchored
+    /// 1e5 m from its box, or a motor of "unlimited" force (FLT_MAX) against a limit, stored
     /// impulses that spun bodies until their contacts overflowed, or no snapshot restored.
     T max_linear_impulse = ScalarTraits<T>::infinity;
     T max_angular_impulse = ScalarTraits<T>::infinity;

@@ -482,7 +482,7 @@ template <class T>
 void SnapshotAccess<T>::check_world(const World<T>& w) {
     // Warm-start impulses are caches of the solver: each must give the bodies it acts on a finite
     // velocity change (m/s at their bounding radius, or rad/s). Within max_size was asked until
-    // 0.9.1, but a step does not keep to it: joints set against each other, or a distance joint
+    // 0.9.1, but a step does not keep to it: a box welded with an anchor 1e5 m out, or a distance joint
     // anchored 1e20 m out on a light body, left contact and joint impulses beyond it, and the
     // world's own snapshot did not restore. Beyond max_size the next step is what stepping the
     // original would be: its caps and its last defence (World::discard_overflowed_solve) hold.
@@ -493,7 +493,8 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
         return largest > T(0) ? largest * length(v / largest) : T(0);
     };
     const auto linear_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) {
-        return std::abs(impulse) * (detail::speed_per_impulse(w.bodies_[a]) + detail::speed_per_impulse(w.bodies_[b])) <= finite;
+        const auto reach = [](const Body<T>& body) { return detail::speed_per_impulse(body, detail::spin_per_impulse(body)); };
+        return std::abs(impulse) * (reach(w.bodies_[a]) + reach(w.bodies_[b])) <= finite;
     };
     const auto angular_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) {
         return std::abs(impulse) * (detail::spin_per_impulse(w.bodies_[a]) + detail::spin_per_impulse(w.bodies_[b])) <= finite;

@@ -233,7 +233,7 @@ void World<T>::prepare_joints(T h) {
         c.limit_softness = settings_.solver == SolverMode::soft_step ? limit_soft : c.softness;
         c.max_bias_speed = settings_.max_linear_speed;
         // A velocity change of half the largest speed setting (10⁶ m/s in float, 10³⁰ in double)
-        // per substep: at max_size's 10⁵⁰ in double, two joints set against each other spun a
+        // per substep: at max_size's 10⁵⁰ in double, a weld and a distance joint fighting spun a
         // body fast enough that its contacts' impulses overflowed to inf.
         const auto cap = [](T response) {
             return response > T(0) ? T(0.5) * detail::max_setting_length<T>() / response : ScalarTraits<T>::infinity;
@@ -242,8 +242,10 @@ void World<T>::prepare_joints(T h) {
         // anchored 1e30 m out on a 0.24 kg box (double), a row at the bounding radius's cap spun
         // the box so fast that its contacts overflowed to inf.
         const T lever_a = length(c.r_a0) + (j.type == JointType::prismatic ? length(c.delta_center + c.r_b0 - c.r_a0) : T(0));
-        c.max_linear_impulse = cap(detail::speed_per_impulse(a, lever_a) + detail::speed_per_impulse(b, length(c.r_b0)));
-        c.max_angular_impulse = cap(detail::spin_per_impulse(a) + detail::spin_per_impulse(b));
+        const T spin_a = detail::spin_per_impulse(a), spin_b = detail::spin_per_impulse(b);
+        c.max_linear_impulse =
+            cap(detail::speed_per_impulse(a, spin_a, lever_a) + detail::speed_per_impulse(b, spin_b, length(c.r_b0)));
+        c.max_angular_impulse = cap(spin_a + spin_b);
         c.max_axial_impulse = detail::linear_axis(j.type) ? c.max_linear_impulse : c.max_angular_impulse;
         const auto speed_cap = [&](std::uint32_t k) {  // a static stand-in (0) does not move
             return k == 0 ? T(0) : j.type == JointType::prismatic ? integration_[k].max_speed : integration_[k].spin_cap.roll;
