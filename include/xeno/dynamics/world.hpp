@@ -42,6 +42,7 @@
 #include "integrator.hpp"
 #include "joint.hpp"
 #include "query_filter.hpp"
+#include "rebound_energy.hpp"
 #include "support_stiffness.hpp"
 
 #include <algorithm>
@@ -633,6 +634,7 @@ private:
     std::vector<std::uint8_t> old_taken_;            ///< last step's contacts of a mesh pair already matched (pass 3)
     std::vector<std::uint32_t> row_contacts_;        ///< per contact row: its contact (prepare)
     std::vector<std::uint32_t> bouncing_rows_;       ///< the rows with a restitution, in row order (prepare)
+    detail::ReboundEnergyCap<T> rebound_cap_;        ///< solve: a bounce gives back no more than it took
     std::vector<std::uint32_t> collide_jobs_;        ///< several workers: the pairs of kind collided, in pair order
     std::vector<Contact<T>> job_contacts_;           ///< several workers: the contact of each of collide_jobs_
     std::vector<PartsContact> job_results_;          ///< several workers: what collide_parts did for each of collide_jobs_
@@ -2049,7 +2051,15 @@ void World<T>::solve(T dt) {
         solver_bodies_[0] = detail::SolverBody<T>{};
     }
     wide_rows_.unpack(constraints_, tasks_.get());
+    rebound_cap_.before(constraints_, bouncing_rows_, joint_rows_, solver_bodies_, integration_);
     detail::apply_restitution(constraints_, bouncing_rows_, solver_bodies_, solver_masses_, settings_.restitution_threshold, h);
+    rebound_cap_.after(
+        constraints_, solver_bodies_, solver_masses_, integration_,
+        [&](std::uint32_t k) {
+            const Body<T>& b = bodies_[solver_slot_[k]];
+            return std::make_pair(b.linear_velocity_, b.angular_velocity_);
+        },
+        h);
     for (const detail::JointConstraint<T>& c : joint_rows_) detail::cap_joint_impulses(joints_[c.joint], c);
 }
 
