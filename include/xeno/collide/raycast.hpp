@@ -254,6 +254,26 @@ T ray_skip(const Vec3<T>& centre, T reach, const Ray<T>& ray) {
     return along > T(2) * (reach + slack) ? along - (reach + slack) : T(0);
 }
 
+/// A ray moved up to a shape by ray_skip: the distance skipped, the new start (world), and that
+/// start and the direction in the frame of `pose`.
+template <class T>
+struct SkippedRay {
+    T skip;
+    Vec3<T> start, origin, direction;
+};
+
+/// The ray moved up to a shape placed by `pose` within `reach` of `centre` (world), or nothing
+/// when the shape lies beyond max_distance or the ray passes it farther than the range of T.
+template <class T>
+std::optional<SkippedRay<T>> skip_to(const Transform<T>& pose, const Vec3<T>& centre, T reach, const Ray<T>& ray) {
+    const T skip = ray_skip(centre, reach, ray);
+    if (!(skip <= ray.max_distance)) return std::nullopt;
+    const Vec3<T> start = skip > T(0) ? ray.origin + ray.direction * skip : ray.origin;
+    const Vec3<T> origin = pose.inverse_apply(start);
+    if (!is_finite(origin)) return std::nullopt;
+    return SkippedRay<T>{skip, start, origin, pose.inverse_apply_direction(ray.direction)};
+}
+
 }  // namespace detail
 
 /// The first point where the ray meets the shape placed by pose, if it does within max_distance.
@@ -261,18 +281,15 @@ T ray_skip(const Vec3<T>& centre, T reach, const Ray<T>& ray) {
 /// away is first moved up to the shape along itself (detail::ray_skip).
 template <class T>
 std::optional<RayHit<T>> raycast(const Shape<T>& shape, const Transform<T>& pose, const Ray<T>& ray) {
-    const T skip = detail::ray_skip(pose.position, bounding_radius(shape), ray);
-    if (!(skip <= ray.max_distance)) return std::nullopt;
-    const Vec3<T> start = skip > T(0) ? ray.origin + ray.direction * skip : ray.origin;
-    const Vec3<T> o = pose.inverse_apply(start);
-    if (!is_finite(o)) return std::nullopt;  // it passes the shape farther than the range of T
-    const Vec3<T> d = pose.inverse_apply_direction(ray.direction);
-    const std::optional<detail::LocalHit<T>> hit = detail::raycast_local(shape, o, d, ray.max_distance - skip);
+    const std::optional<detail::SkippedRay<T>> s = detail::skip_to(pose, pose.position, bounding_radius(shape), ray);
+    if (!s) return std::nullopt;
+    const std::optional<detail::LocalHit<T>> hit =
+        detail::raycast_local(shape, s->origin, s->direction, ray.max_distance - s->skip);
     if (!hit) return std::nullopt;
     RayHit<T> out;
-    out.distance = skip + hit->t;
+    out.distance = s->skip + hit->t;
     out.fraction = ray.max_distance < ScalarTraits<T>::max ? out.distance / ray.max_distance : T(0);
-    out.point = start + ray.direction * hit->t;
+    out.point = s->start + ray.direction * hit->t;
     out.normal = pose.apply_direction(hit->n);
     return out;
 }

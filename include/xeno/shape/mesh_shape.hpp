@@ -55,17 +55,13 @@ void for_each_triangle(const MeshShape<T>& m, const Aabb<T>& local_box, F&& f, K
 template <class T>
 std::optional<std::pair<RayHit<T>, std::uint32_t>> raycast(const MeshShape<T>& m, const Transform<T>& pose, const Ray<T>& ray) {
     // A ray from far away first moves up to the mesh's bounding sphere, as for convex shapes.
-    const Aabb<T> bounds = std::visit([](const auto& mesh) { return mesh.local_bounds(); }, m);
-    const T skip = detail::ray_skip(pose.apply(bounds.center()), length(bounds.half_extents()), ray);
-    if (!(skip <= ray.max_distance)) return std::nullopt;
-    Ray<T> local = ray;
-    local.origin = pose.inverse_apply(skip > T(0) ? ray.origin + ray.direction * skip : ray.origin);
-    if (!is_finite(local.origin)) return std::nullopt;  // it passes the mesh farther than the range of T
-    local.direction = pose.inverse_apply_direction(ray.direction);
-    local.max_distance = ray.max_distance - skip;
+    const Aabb<T> bounds = local_bounds(m);
+    const auto s = detail::skip_to(pose, pose.apply(bounds.center()), length(bounds.half_extents()), ray);
+    if (!s) return std::nullopt;
+    const Ray<T> local{s->origin, s->direction, ray.max_distance - s->skip};
     auto hit = std::visit([&](const auto& mesh) { return mesh.raycast(local); }, m);
     if (!hit) return hit;
-    hit->first.distance += skip;
+    hit->first.distance += s->skip;
     hit->first.point = pose.apply(hit->first.point);
     hit->first.normal = pose.apply_direction(hit->first.normal);
     hit->first.fraction = ray.max_distance < ScalarTraits<T>::max ? hit->first.distance / ray.max_distance : T(0);
