@@ -356,6 +356,8 @@ struct SnapshotAccess {
         check_world(out);
         out.solver_index_.assign(out.bodies_.size(), 0);
         out.rebuild_joint_pairs();
+        for (const Joint<T>& j : out.joints_)
+            if (j.alive) out.bind_joints();
         out.rebuild_query_tree();
         out.index_contacts(out.bodies_.size());
         // Keep the target's callbacks; take everything else.

@@ -497,6 +497,14 @@ private:
     /// remeasured: a mesh pair that barely moved (its contacts re-measured into remeasured_).
     enum class PairKind : std::uint8_t { dropped, apart, kept, collided, parts, mesh, remeasured };
     bool remeasure_mesh_pair(const ProxyPair& pair, T margin, T dt, std::size_t old_begin, std::size_t old_end);
+    /// The mesh narrow phase's three parts, bound by the first mesh body (see joint_stage_).
+    struct MeshStage {
+        bool (World::*remeasure)(const ProxyPair&, T, T, std::size_t, std::size_t) = nullptr;
+        void (World::*manifolds)(const ProxyPair&, T, MeshManifolds&) const = nullptr;
+        void (World::*merge)(const ProxyPair&, T, std::size_t, std::size_t, const MeshManifolds&,
+                             std::vector<Contact<T>>&) = nullptr;
+    };
+    void bind_mesh_pairs() { mesh_stage_ = {&World::remeasure_mesh_pair, &World::mesh_manifolds, &World::merge_mesh_pair}; }
     /// B's centre of mass in A's body frame, and B's orientation relative to A's: the pose a
     /// contact's manifold is made at (Contact::made_offset, made_turn).
     static Vec3<T> offset_in_a(const Body<T>& a, const Body<T>& b) {
@@ -512,6 +520,17 @@ private:
     };
     void prepare_joints(T h);
     void turn_joint_inertias();
+    // Joints and mesh pairs are stages a world binds when it first needs them: the step reaches
+    // them through the member pointers joint_stage_ and mesh_stage_, which the first create_joint
+    // (or a snapshot holding joints) and the first mesh or heightfield body set. A program that
+    // never makes either never instantiates their code: 17 % of a stepping World's object code and
+    // 8-14 % of its -O2 compile (docs/benchmarks.md, "Paying for joints and meshes ...").
+    enum class JointStage : std::uint8_t { prepare, turn_inertias, warm_start, solve, relax, cap };
+    void run_joint_stage(JointStage stage, T h);
+    void bind_joints() { joint_stage_ = &World::run_joint_stage; }
+    void joint_stage(JointStage stage, T h) {
+        if (joint_stage_) (this->*joint_stage_)(stage, h);
+    }
     BodyId id_of(std::uint32_t slot) const { return {slot, bodies_[slot].generation_}; }
     /// An awake dynamic body, or a kinematic body with a velocity: something that can push.
     static bool active(const Body<T>& b) {
@@ -616,7 +635,8 @@ private:
     std::vector<Joint<T>> joints_;
     std::vector<std::uint32_t> free_joints_;
     std::vector<detail::JointConstraint<T>> joint_rows_;
-    std::vector<std::uint64_t> unconnected_pairs_;  ///< sorted keys of jointed pairs that do not collide
+    void (World::*joint_stage_)(JointStage, T) = nullptr;  ///< run_joint_stage once a joint was made
+    std::vector<std::uint64_t> unconnected_pairs_;         ///< sorted keys of jointed pairs that do not collide
     StepStats stats_;
     std::vector<ContactEvent<T>> events_, events_pending_;
     std::shared_ptr<const Listener> listener_;  ///< shared: a running listener outlives its replacement
@@ -628,6 +648,7 @@ private:
     std::vector<PairWork> pair_work_;                ///< per broad-phase pair (narrow phase)
     EarlyOut<T> early_out_;                          ///< each convex body's rounded box in the world (update_bounds)
     std::vector<std::uint32_t> early_jobs_;          ///< pairs of kind collided, for the early-out
+    MeshStage mesh_stage_;                           ///< set by the first mesh body (bind_mesh_pairs)
     MeshManifolds mesh_manifolds_;                   ///< one worker: a mesh pair's manifolds (narrow phase)
     std::vector<std::uint32_t> mesh_jobs_;           ///< several workers: the pairs of kind mesh, in pair order
     std::vector<MeshManifolds> mesh_job_manifolds_;  ///< several workers: the manifolds of each of mesh_jobs_
@@ -708,7 +729,9 @@ template <class T>
 BodyId World<T>::create_body(std::shared_ptr<const MeshShape<T>> mesh, const BodyDef<T>& def) {
     require_outside_filter("World::create_body");
     if (!mesh) detail::report_invalid("World::create_body", "mesh must not be null", 0.0);
-    return create_body_impl(nullptr, nullptr, def, std::move(mesh));
+    const BodyId id = create_body_impl(nullptr, nullptr, def, std::move(mesh));
+    bind_mesh_pairs();
+    return id;
 }
 
 template <class T>
@@ -1166,7 +1189,8 @@ void World<T>::narrow_phase(T dt) {
                     : a.compound() || b.compound() ? PairKind::parts
                                                    : PairKind::collided;
         work.remeasured_begin = static_cast<std::uint32_t>(remeasured_.size());
-        if (work.kind == PairKind::mesh && remeasure_mesh_pair(pair, pair_margin(a, b, dt), dt, work.old_begin, work.old_end))
+        if (work.kind == PairKind::mesh &&
+            (this->*mesh_stage_.remeasure)(pair, pair_margin(a, b, dt), dt, work.old_begin, work.old_end))
             work.kind = PairKind::remeasured;
         if (work.kind == PairKind::collided) early_jobs_.push_back(static_cast<std::uint32_t>(k));
         if (parallel && work.kind == PairKind::mesh) mesh_jobs_.push_back(static_cast<std::uint32_t>(k));
@@ -1195,7 +1219,7 @@ void World<T>::narrow_phase(T dt) {
     parallel_for(tasks_.get(), static_cast<std::uint32_t>(mesh_jobs_.size()), 1u, [&](std::uint32_t begin, std::uint32_t end) {
         for (std::uint32_t j = begin; j < end; ++j) {
             const ProxyPair& pair = pairs_[mesh_jobs_[j]];
-            mesh_manifolds(pair, pair_margin(bodies_[pair.a], bodies_[pair.b], dt), mesh_job_manifolds_[j]);
+            (this->*mesh_stage_.manifolds)(pair, pair_margin(bodies_[pair.a], bodies_[pair.b], dt), mesh_job_manifolds_[j]);
         }
     });
 
@@ -1217,9 +1241,9 @@ void World<T>::narrow_phase(T dt) {
             old = work.old_end;
         } else if (work.kind == PairKind::mesh) {
             const T margin = pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt);
-            if (!parallel) mesh_manifolds(pairs_[k], margin, mesh_manifolds_);
-            merge_mesh_pair(pairs_[k], margin, old, work.old_end, parallel ? mesh_job_manifolds_[mesh_job++] : mesh_manifolds_,
-                            next);
+            if (!parallel) (this->*mesh_stage_.manifolds)(pairs_[k], margin, mesh_manifolds_);
+            (this->*mesh_stage_.merge)(pairs_[k], margin, old, work.old_end,
+                                       parallel ? mesh_job_manifolds_[mesh_job++] : mesh_manifolds_, next);
             old = work.old_end;
         } else if (work.kind == PairKind::remeasured) {
             const std::uint32_t count = work.old_end - work.old_begin;
@@ -1731,7 +1755,7 @@ void World<T>::prepare(T dt) {
     });
     stats_.awake_bodies = count;
 
-    prepare_joints(h);
+    joint_stage(JointStage::prepare, h);
 
     // Contact rows.
     const T contact_hertz = detail::capped_contact_hertz(settings_, h);
@@ -2007,11 +2031,10 @@ void World<T>::solve(T dt) {
                 if (integration_[i].dynamic)
                     detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
         });
-        turn_joint_inertias();
+        joint_stage(JointStage::turn_inertias, h);
         if (!bouncing_rows_.empty()) wide_rows_.take_approach(solver_bodies_, h, tasks_.get());
         if (settings_.warm_starting) {
-            for (const detail::JointConstraint<T>& c : joint_rows_)
-                detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
+            joint_stage(JointStage::warm_start, h);
             wide_rows_.warm_start(solver_bodies_, tasks_.get());
         }
         // The first substep relaxes longer: its warm start applies the last step's impulses, and
@@ -2027,14 +2050,12 @@ void World<T>::solve(T dt) {
             // Joints after contacts: a limb's limit then answers the impulse its landing just took
             // (before them, a ragdoll landed 4.5° past a cone at 8 substeps; docs/solver.md).
             wide_rows_.solve(solver_bodies_, pass, tasks_.get());
-            for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
-                for (const detail::JointConstraint<T>& c : joint_rows_)
-                    detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], true, h);
+            joint_stage(JointStage::solve, h);
         }
         parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
             for (std::uint32_t i = begin + 1; i <= end; ++i) detail::integrate_position(solver_bodies_[i], integration_[i], h);
         });
-        turn_joint_inertias();
+        joint_stage(JointStage::turn_inertias, h);
         pass.use_bias = false;
         // Joints relax in the last relax_iterations of these sweeps only: the first substep's extra
         // sweeps are for stored contact impulses (with the joints in all of them, a door still
@@ -2042,10 +2063,7 @@ void World<T>::solve(T dt) {
         const int joints_from = relax - settings_.relax_iterations;
         for (int it = 0; it < relax; ++it) {
             pass.last_of_substep = it + 1 == relax;
-            if (it >= joints_from)
-                for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
-                    for (const detail::JointConstraint<T>& c : joint_rows_)
-                        detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], false, h);
+            if (it >= joints_from) joint_stage(JointStage::relax, h);
             wide_rows_.solve(solver_bodies_, pass, tasks_.get());
         }
         solver_bodies_[0] = detail::SolverBody<T>{};
@@ -2060,7 +2078,7 @@ void World<T>::solve(T dt) {
             return std::make_pair(b.linear_velocity_, b.angular_velocity_);
         },
         h);
-    for (const detail::JointConstraint<T>& c : joint_rows_) detail::cap_joint_impulses(joints_[c.joint], c);
+    joint_stage(JointStage::cap, h);
 }
 
 template <class T>

@@ -105,6 +105,7 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
         joints_.push_back(j);
     }
     joints_[slot].alive = true;
+    bind_joints();
     bodies_[ia].wake();
     bodies_[ib].wake();
     rebuild_joint_pairs();
@@ -256,6 +257,29 @@ void World<T>::prepare_joints(T h) {
             j.axial_impulse = j.motor_impulse = j.swing_impulse = T(0);
         }
         joint_rows_.push_back(c);
+    }
+}
+
+/// The joints' part of each stage of the step (World::solve calls it through joint_stage_).
+template <class T>
+void World<T>::run_joint_stage(JointStage stage, T h) {
+    switch (stage) {
+        case JointStage::prepare: prepare_joints(h); return;
+        case JointStage::turn_inertias: turn_joint_inertias(); return;
+        case JointStage::warm_start:
+            for (const detail::JointConstraint<T>& c : joint_rows_)
+                detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
+            return;
+        case JointStage::solve:
+        case JointStage::relax:  // the solve with its bias, and the relax sweeps without
+            for (int sweep = 0; sweep < settings_.joint_iterations; ++sweep)
+                for (const detail::JointConstraint<T>& c : joint_rows_)
+                    detail::solve_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b], stage == JointStage::solve,
+                                        h);
+            return;
+        case JointStage::cap:
+            for (const detail::JointConstraint<T>& c : joint_rows_) detail::cap_joint_impulses(joints_[c.joint], c);
+            return;
     }
 }
 
