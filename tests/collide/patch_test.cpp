@@ -13,22 +13,36 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <vector>
 
 using namespace xeno;
 
 namespace {
 
-// Whether (x, y) lies inside the convex polygon of the corners (any order): on the inner side of
-// every line through two corners that has all corners on one side.
-bool inside_hull(const std::array<double, 4>& u, const std::array<double, 4>& v, int n, double x, double y) {
+// The polygon of the corners (any order) as the lines through two corners that have every corner
+// on their inner side (or on them): a point is inside when it is on the inner side of each.
+struct Edge {
+    double x0, y0, dx, dy;  ///< a corner and the direction to the other
+};
+
+std::vector<Edge> hull_edges(const std::array<double, 4>& u, const std::array<double, 4>& v, int n) {
+    std::vector<Edge> edges;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             if (i == j) continue;
-            const auto side = [&](double px, double py) { return (u[j] - u[i]) * (py - v[i]) - (v[j] - v[i]) * (px - u[i]); };
+            const Edge e{u[i], v[i], u[j] - u[i], v[j] - v[i]};
             bool edge = true;
-            for (int k = 0; k < n; ++k) edge = edge && side(u[k], v[k]) >= -1e-12;
-            if (edge && side(x, y) < 0) return false;
+            for (int k = 0; k < n; ++k) edge = edge && e.dx * (v[k] - e.y0) - e.dy * (u[k] - e.x0) >= -1e-12;
+            if (edge) edges.push_back(e);
         }
+    return edges;
+}
+
+// (Found once per polygon, not per grid point: under AddressSanitizer at -O0 the search at each
+// of the 360,000 points took 23-30 s, now 1 s.)
+bool inside_hull(const std::vector<Edge>& edges, double x, double y) {
+    for (const Edge& e : edges)
+        if (e.dx * (y - e.y0) - e.dy * (x - e.x0) < 0) return false;
     return true;
 }
 
@@ -36,12 +50,13 @@ double grid_mean_radius(const std::array<double, 4>& u, const std::array<double,
     double lo_u = 1e9, hi_u = -1e9, lo_v = 1e9, hi_v = -1e9;
     for (int i = 0; i < n; ++i)
         lo_u = std::min(lo_u, u[i]), hi_u = std::max(hi_u, u[i]), lo_v = std::min(lo_v, v[i]), hi_v = std::max(hi_v, v[i]);
+    const std::vector<Edge> edges = hull_edges(u, v, n);
     const int cells = 600;
     double sum = 0, area = 0;
     for (int i = 0; i < cells; ++i)
         for (int j = 0; j < cells; ++j) {
             const double x = lo_u + (hi_u - lo_u) * (i + 0.5) / cells, y = lo_v + (hi_v - lo_v) * (j + 0.5) / cells;
-            if (!inside_hull(u, v, n, x, y)) continue;
+            if (!inside_hull(edges, x, y)) continue;
             sum += std::sqrt(x * x + y * y);
             area += 1;
         }
