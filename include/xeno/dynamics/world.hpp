@@ -524,7 +524,8 @@ private:
     // them through the member pointers joint_stage_ and mesh_stage_, which the first create_joint
     // (or a snapshot holding joints) and the first mesh or heightfield body set. A program that
     // never makes either never instantiates their code: 17 % of a stepping World's object code and
-    // 8-14 % of its -O2 compile (docs/benchmarks.md, "Paying for joints and meshes ...").
+    // 8-14 % of its -O2 compile (docs/benchmarks.md, "Paying for joints and meshes only when they
+    // are used").
     enum class JointStage : std::uint8_t { prepare, turn_inertias, warm_start, solve, relax, cap };
     void run_joint_stage(JointStage stage, T h);
     void bind_joints() { joint_stage_ = &World::run_joint_stage; }
