@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <algorithm>
 #include <array>
 #include <map>
 #include <type_traits>
@@ -356,8 +357,7 @@ struct SnapshotAccess {
         check_world(out);
         out.solver_index_.assign(out.bodies_.size(), 0);
         out.rebuild_joint_pairs();
-        for (const Joint<T>& j : out.joints_)
-            if (j.alive) out.bind_joints();
+        if (std::any_of(out.joints_.begin(), out.joints_.end(), [](const Joint<T>& j) { return j.alive; })) out.bind_joints();
         out.rebuild_query_tree();
         out.index_contacts(out.bodies_.size());
         // Keep the target's callbacks; take everything else.
