@@ -232,11 +232,11 @@ std::optional<LocalHit<T>> raycast_local(const Shape<T>& shape, const Vec3<T>& o
 /// How far a ray may skip ahead before it can meet a shape within `reach` of `centre`: a ray that
 /// passes the centre more than 2 reach ahead of its origin starts again reach (and the rounding
 /// of the new start) short of that point, as no point of the shape lies nearer the origin along
-/// the ray, so the shape's local
-/// quadratics and planes see small numbers. Without it the cone's side, whose quadratic is the
-/// textbook one, was hit 362 m off its surface from 10⁶ m in float, and a ray from near the end of
-/// the range of T (3·10³⁸ in float) overflowed the shape's frame and hit shapes it passes far
-/// from, at an infinite distance. Infinity when the shape lies beyond the range of T.
+/// the ray, so the shape's local quadratics and planes see small numbers. Without it the cone's
+/// side, whose quadratic is the textbook one, was hit 362 m off its surface from 10⁶ m in float,
+/// and a ray from near the end of the range of T (3·10³⁸ in float) overflowed the shape's frame
+/// and hit shapes it passes far from, at an infinite distance. Infinity when the shape lies
+/// beyond the range of T.
 template <class T>
 T ray_skip(const Vec3<T>& centre, T reach, const Ray<T>& ray) {
     const Vec3<T> to = centre - ray.origin;

@@ -140,6 +140,13 @@ void set_rebounds(ContactConstraint<T>& c, const SolverBody<T>& a, const SolverB
     }
 }
 
+/// Whether the restitution pass drives this point to its rebound speed: it approached faster
+/// than the threshold and carried impulse in the substeps (ReboundEnergyCap asks the same).
+template <class T>
+bool point_rebounds(const ContactConstraintPoint<T>& p, T threshold) {
+    return !(p.relative_velocity > -threshold) && p.max_normal_impulse != T(0);
+}
+
 /// The restitution pass after the substeps (see the file comment) over the rows in `bouncing`:
 /// those with a restitution, in row order (World::prepare lists them), so that a scene without
 /// bounce does not read every row. Eight sweeps of the normal rows, the friction of the rebound
@@ -162,7 +169,7 @@ void apply_restitution(std::vector<ContactConstraint<T>>& constraints, const std
                 SolverBody<T>& b = bodies[c.b];
                 for (int i = 0; i < c.count; ++i) {
                     ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
-                    if (p.relative_velocity > -threshold || p.max_normal_impulse == T(0)) continue;
+                    if (!point_rebounds(p, threshold)) continue;
                     const T vn = dot(b.velocity_at(p.r_b) - a.velocity_at(p.r_a), c.normal);
                     const T delta = -p.normal_mass * (vn - p.rebound);
                     const T updated = std::max(p.normal_impulse + delta, T(0));

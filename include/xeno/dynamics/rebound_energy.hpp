@@ -150,12 +150,10 @@ private:
         excluded_[find(0)] = 1;
     }
 
-    /// Whether apply_restitution will drive any point of the row (its test, point by point).
+    /// Whether apply_restitution will drive any point of the row.
     static bool rebounds(const ContactConstraint<T>& c, T threshold) {
-        for (int i = 0; i < c.count; ++i) {
-            const ContactConstraintPoint<T>& p = c.points[static_cast<std::size_t>(i)];
-            if (!(p.relative_velocity > -threshold) && p.max_normal_impulse != T(0)) return true;
-        }
+        for (int i = 0; i < c.count; ++i)
+            if (point_rebounds(c.points[static_cast<std::size_t>(i)], threshold)) return true;
         return false;
     }
 
