@@ -237,6 +237,10 @@ TEST_CASE_TEMPLATE("the tree stays valid and shallow under inserts, removes and 
     REQUIRE(tree.valid());
     REQUIRE(tree.size() == live);
     CHECK(tree.height() == log_live);
+    for (std::uint32_t p = 0; p < fat.size(); ++p) {
+        REQUIRE(tree.contains(p) == !fat[p].empty());
+        if (tree.contains(p)) CHECK((tree.fat_box(p).min == fat[p].min && tree.fat_box(p).max == fat[p].max));
+    }
     for (int q = 0; q < 50; ++q) {
         const Aabb<T> box = random_box<T>(rng, 30.0);
         std::vector<std::uint32_t> found, expected;

@@ -17,8 +17,9 @@
 //            also reinsert when the box shrank so much that the fat box reaches more than four
 //            margins beyond it, so a proxy that was once huge does not stay huge in the tree;
 //   build    from empty with many proxies (a cold start), a top-down median split on the axis
-//            of largest centre spread, O(n log n), instead of n insertions; nodes are allocated
-//            depth first, so a subtree is contiguous in memory and a traversal stays in cache.
+//            of largest centre spread, O(n log n), instead of n insertions; the leaves are put
+//            in the tree's order and the inner nodes allocated depth first after them, so a
+//            subtree's nodes lie in two contiguous runs and a traversal stays in cache.
 //            find_pairs rebuilds the same way once the inserts, removes and reinserts since the
 //            last build outnumber the proxies: amortised O(log n) per change, and it restores the
 //            memory layout the incremental edits scatter (when everything moves far every step,
@@ -76,7 +77,7 @@ public:
     /// True when proxy is in the tree.
     bool contains(std::uint32_t proxy) const { return proxy < leaf_of_.size() && leaf_of_[proxy] != kNull; }
     /// The fattened box stored for proxy (which must be in the tree), metres.
-    const Aabb<T>& fat_box(std::uint32_t proxy) const { return fat_[proxy]; }
+    const Aabb<T>& fat_box(std::uint32_t proxy) const { return nodes_[leaf_of_[proxy]].box; }
     /// Calls f(proxy) for every proxy whose fat box overlaps box (touching counts), in tree order.
     template <class F>
     void query(const Aabb<T>& box, F&& f) const;
@@ -106,19 +107,19 @@ public:
 
 private:
     static constexpr std::uint32_t kNull = 0xffffffffu;
+    // 40 bytes in float, 64 in double: two nodes a proxy are most of the tree's memory, so a
+    // leaf keeps its proxy id where an inner node keeps its second child, and the leaf's fat box
+    // is the only copy of it.
     struct Node {
         Aabb<T> box;           ///< fat box for a leaf, union of the children for an inner node
         std::uint32_t parent;  ///< kNull at the root; next free node when on the free list
         std::uint32_t child1;  ///< kNull for a leaf
-        std::uint32_t child2;
-        std::uint32_t proxy;  ///< the leaf's proxy id
-        std::int32_t height;  ///< 0 for a leaf, -1 when free
+        std::uint32_t child2;  ///< a leaf's proxy id
+        std::int32_t height;   ///< 0 for a leaf, -1 when free
         bool leaf() const { return child1 == kNull; }
+        std::uint32_t proxy() const { return child2; }
     };
-    struct BuildItem {
-        Vec3<T> centre;
-        std::uint32_t proxy;
-    };
+    static_assert(sizeof(Node) == 6 * sizeof(T) + 16, "a node is its box and four 32-bit numbers");
     struct NodePair {
         std::uint32_t x, y;
     };
@@ -131,18 +132,19 @@ private:
     std::uint32_t balance(std::uint32_t a);
     void refit_up(std::uint32_t node);
     void replace_child(std::uint32_t parent, std::uint32_t old_child, std::uint32_t new_child);
-    void build_all();
-    std::uint32_t build(std::size_t begin, std::size_t end, std::uint32_t parent);
+    void compact_leaves();
+    void split(std::size_t begin, std::size_t end);
+    void put_leaves_in_order();
+    std::uint32_t build_inner(std::uint32_t begin, std::uint32_t end, std::uint32_t parent);
     void self_pairs(const std::vector<Aabb<T>>& boxes, std::vector<ProxyPair>& pairs);
     bool needs_reinsert(const Aabb<T>& fat, const Aabb<T>& box) const;
     int check(std::uint32_t node, std::size_t& leaves) const;
 
     std::vector<Node> nodes_;
     std::vector<std::uint32_t> leaf_of_;  ///< proxy id -> leaf node, kNull when absent
-    std::vector<Aabb<T>> fat_;            ///< proxy id -> its fat box (a copy, read in proxy order)
     std::vector<NodePair> stack_;         ///< scratch for find_pairs
     std::vector<std::uint32_t> added_;    ///< scratch for find_pairs: proxies new this call
-    std::vector<BuildItem> build_;        ///< scratch for the bulk build
+    std::vector<std::uint32_t> build_;    ///< scratch for the bulk build: leaf nodes
     std::vector<std::uint32_t> counts_;   ///< scratch for sorting the pairs
     std::vector<ProxyPair> scratch_;
     std::uint32_t root_ = kNull;
@@ -166,7 +168,6 @@ void AabbTree<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector<Prox
     //    rest (usually nothing to do), collect the new ones.
     for (std::uint32_t i = n; i < leaf_of_.size(); ++i) remove(i);
     leaf_of_.resize(n, kNull);
-    fat_.resize(n);
     std::vector<std::uint32_t>& added = added_;
     added.clear();
     for (std::uint32_t i = 0; i < n; ++i) {
@@ -182,13 +183,8 @@ void AabbTree<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector<Prox
     // 2. New proxies: a cold start builds the whole tree top-down; otherwise insert one by one,
     //    and rebuild when the edits since the last build outnumber the proxies.
     if (root_ == kNull && added.size() > 1) {
-        build_.clear();
-        for (const std::uint32_t i : added) {
-            fat_[i] = boxes[i].expanded(margin_);
-            build_.push_back({fat_[i].center(), i});
-        }
-        proxy_count_ += added.size();
-        build_all();
+        for (const std::uint32_t i : added) make_leaf(i, boxes[i]);
+        rebuild();
     } else {
         for (const std::uint32_t i : added) insert(i, boxes[i]);
         if (edits_since_build_ > std::max<std::size_t>(proxy_count_, 64)) rebuild();
@@ -219,8 +215,8 @@ void AabbTree<T>::self_pairs(const std::vector<Aabb<T>>& boxes, std::vector<Prox
         const Node& y = nodes_[top.y];
         if (!overlaps(x.box, y.box)) continue;
         if (x.leaf() && y.leaf()) {
-            if (overlaps(boxes[x.proxy], boxes[y.proxy]))
-                pairs.push_back(x.proxy < y.proxy ? ProxyPair{x.proxy, y.proxy} : ProxyPair{y.proxy, x.proxy});
+            const std::uint32_t px = x.proxy(), py = y.proxy();
+            if (overlaps(boxes[px], boxes[py])) pairs.push_back(px < py ? ProxyPair{px, py} : ProxyPair{py, px});
         } else if (y.leaf() || (!x.leaf() && x.height >= y.height)) {
             stack_.push_back({x.child2, top.y});
             stack_.push_back({x.child1, top.y});
@@ -252,10 +248,10 @@ void AabbTree<T>::remove(std::uint32_t proxy) {
 template <class T>
 bool AabbTree<T>::move(std::uint32_t proxy, const Aabb<T>& box) {
     XENO_ASSERT(contains(proxy) && !box.empty());
-    if (!needs_reinsert(fat_[proxy], box)) return false;
     const std::uint32_t leaf = leaf_of_[proxy];
+    if (!needs_reinsert(nodes_[leaf].box, box)) return false;
     remove_leaf(leaf);
-    fat_[proxy] = nodes_[leaf].box = box.expanded(margin_);
+    nodes_[leaf].box = box.expanded(margin_);
     insert_leaf(leaf);
     ++reinsertions_;
     ++edits_since_build_;
@@ -266,27 +262,42 @@ template <class T>
 void AabbTree<T>::clear() {
     nodes_.clear();
     leaf_of_.clear();
-    fat_.clear();
     root_ = free_ = kNull;
     proxy_count_ = 0;
     edits_since_build_ = 0;
 }
 
+// Top-down, in three passes over the leaves, which stay where the tree keeps its only copy of
+// each fat box: (1) they move to the front of nodes_ and everything else is dropped; (2) their
+// indices, in proxy order, are split recursively at the median centre along the axis of largest
+// centre spread (split); (3) they are put in the order that leaves them (put_leaves_in_order)
+// and the inner nodes built above them depth first (build_inner). Every split is at the middle
+// of its range, so pass 3 needs only the ranges. The scratch is one index a proxy.
 template <class T>
 void AabbTree<T>::rebuild() {
+    compact_leaves();
     build_.clear();
     for (std::uint32_t p = 0; p < leaf_of_.size(); ++p)
-        if (leaf_of_[p] != kNull) build_.push_back({fat_[p].center(), p});
-    build_all();
+        if (leaf_of_[p] != kNull) build_.push_back(leaf_of_[p]);
+    const std::uint32_t n = static_cast<std::uint32_t>(build_.size());
+    split(0, n);
+    put_leaves_in_order();
+    root_ = n == 0 ? kNull : build_inner(0, n, kNull);
+    edits_since_build_ = 0;
 }
 
-// The tree from build_ (the proxies and their fat boxes), every node allocated afresh.
+// The leaves to nodes_[0, proxy_count_) in the order they had, the other nodes dropped.
 template <class T>
-void AabbTree<T>::build_all() {
-    nodes_.clear();
+void AabbTree<T>::compact_leaves() {
+    std::uint32_t next = 0;
+    for (std::uint32_t i = 0; i < nodes_.size(); ++i) {
+        if (nodes_[i].height != 0) continue;  // inner or free
+        nodes_[next] = nodes_[i];
+        leaf_of_[nodes_[next].proxy()] = next;
+        ++next;
+    }
+    nodes_.resize(next);
     free_ = kNull;
-    root_ = build_.empty() ? kNull : build(0, build_.size(), kNull);
-    edits_since_build_ = 0;
 }
 
 namespace detail {
@@ -354,7 +365,7 @@ void AabbTree<T>::query(const Aabb<T>& box, F&& f) const {
         const Node& node = nodes_[stack.pop().node];
         if (!overlaps(node.box, box)) continue;
         if (node.leaf()) {
-            f(node.proxy);
+            f(node.proxy());
         } else {
             stack.push(node.child1, T(0));
             stack.push(node.child2, T(0));
@@ -380,7 +391,7 @@ void AabbTree<T>::query_segment(const Vec3<T>& origin, const Vec3<T>& direction,
         if (item.enter > reach) continue;
         const Node& node = nodes_[item.node];
         if (node.leaf()) {
-            reach = f(node.proxy, reach);
+            reach = f(node.proxy(), reach);
             if (reach < T(0)) return;
             continue;
         }
@@ -401,7 +412,6 @@ void AabbTree<T>::reserve(std::size_t proxies) {
     };
     grow(nodes_, 2 * proxies);
     grow(leaf_of_, proxies);
-    grow(fat_, proxies);
     grow(build_, proxies);
 }
 
@@ -414,8 +424,7 @@ bool AabbTree<T>::valid() const {
     for (std::uint32_t p = 0; p < leaf_of_.size(); ++p) {
         if (leaf_of_[p] == kNull) continue;
         const Node& leaf = nodes_[leaf_of_[p]];
-        if (!leaf.leaf() || leaf.proxy != p || leaf.height != 0) return false;
-        if (!(leaf.box.min == fat_[p].min) || !(leaf.box.max == fat_[p].max)) return false;
+        if (!leaf.leaf() || leaf.proxy() != p || leaf.height != 0) return false;
         ++mapped;
     }
     return mapped == proxy_count_;
@@ -459,12 +468,8 @@ void AabbTree<T>::release(std::uint32_t node) {
 template <class T>
 std::uint32_t AabbTree<T>::make_leaf(std::uint32_t proxy, const Aabb<T>& box) {
     const std::uint32_t leaf = allocate();
-    if (leaf_of_.size() <= proxy) {
-        leaf_of_.resize(proxy + std::size_t(1), kNull);
-        fat_.resize(proxy + std::size_t(1));
-    }
-    fat_[proxy] = box.expanded(margin_);
-    nodes_[leaf] = {fat_[proxy], kNull, kNull, kNull, proxy, 0};
+    if (leaf_of_.size() <= proxy) leaf_of_.resize(proxy + std::size_t(1), kNull);
+    nodes_[leaf] = {box.expanded(margin_), kNull, kNull, proxy, 0};
     leaf_of_[proxy] = leaf;
     ++proxy_count_;
     return leaf;
@@ -508,7 +513,7 @@ void AabbTree<T>::insert_leaf(std::uint32_t leaf) {
     const std::uint32_t sibling = index;
     const std::uint32_t old_parent = nodes_[sibling].parent;
     const std::uint32_t parent = allocate();
-    nodes_[parent] = {merged(box, nodes_[sibling].box), old_parent, sibling, leaf, 0, nodes_[sibling].height + 1};
+    nodes_[parent] = {merged(box, nodes_[sibling].box), old_parent, sibling, leaf, nodes_[sibling].height + 1};
     if (old_parent == kNull) root_ = parent;
     else replace_child(old_parent, sibling, parent);
     nodes_[sibling].parent = parent;
@@ -594,34 +599,63 @@ std::uint32_t AabbTree<T>::balance(std::uint32_t ia) {
     return ic;
 }
 
-// Top-down build over build_[begin, end): split at the median centre along the axis of largest
-// centre spread. Nodes are allocated depth first (parent, then its first subtree, then its
-// second), so every subtree occupies a contiguous run of nodes_. Returns the subtree's root; its
-// heights are exact and it is balanced.
+// Pass 2 of rebuild over build_[begin, end): the leaves below the median centre along the axis
+// of largest centre spread to the first half, then each half the same way.
 template <class T>
-std::uint32_t AabbTree<T>::build(std::size_t begin, std::size_t end, std::uint32_t parent) {
-    const std::uint32_t node = allocate();
-    if (end - begin == 1) {
-        const std::uint32_t proxy = build_[begin].proxy;
-        nodes_[node] = {fat_[proxy], parent, kNull, kNull, proxy, 0};
-        leaf_of_[proxy] = node;
-        return node;
-    }
+void AabbTree<T>::split(std::size_t begin, std::size_t end) {
+    if (end - begin < 2) return;
     Aabb<T> centres;
-    for (std::size_t k = begin; k < end; ++k) centres.merge(build_[k].centre);
+    for (std::size_t k = begin; k < end; ++k) centres.merge(nodes_[build_[k]].box.center());
     const int axis = max_axis(centres.max - centres.min);
+    const auto centre = [this, axis](std::uint32_t leaf) {  // as Aabb::center, on one axis
+        return nodes_[leaf].box.min[axis] * T(0.5) + nodes_[leaf].box.max[axis] * T(0.5);
+    };
     const std::size_t mid = begin + (end - begin) / 2;
     const auto first = build_.begin();
     std::nth_element(first + static_cast<std::ptrdiff_t>(begin), first + static_cast<std::ptrdiff_t>(mid),
                      first + static_cast<std::ptrdiff_t>(end),
-                     [axis](const BuildItem& x, const BuildItem& y) { return x.centre[axis] < y.centre[axis]; });
-    const std::uint32_t left = build(begin, mid, node);
-    const std::uint32_t right = build(mid, end, node);
-    nodes_[node] = {merged(nodes_[left].box, nodes_[right].box),
-                    parent,
-                    left,
-                    right,
-                    0,
+                     [&centre](std::uint32_t x, std::uint32_t y) { return centre(x) < centre(y); });
+    split(begin, mid);
+    split(mid, end);
+}
+
+// Pass 3a: nodes_[k] becomes the leaf build_[k], following each cycle of the permutation once
+// (a visited index is marked by build_[k] = k), so a subtree's leaves lie side by side.
+template <class T>
+void AabbTree<T>::put_leaves_in_order() {
+    for (std::uint32_t k = 0; k < build_.size(); ++k) {
+        if (build_[k] == k) continue;
+        const Node first = nodes_[k];
+        std::uint32_t j = k;
+        for (;;) {
+            const std::uint32_t from = build_[j];
+            build_[j] = j;
+            if (from == k) {
+                nodes_[j] = first;
+                break;
+            }
+            nodes_[j] = nodes_[from];
+            j = from;
+        }
+    }
+    for (std::uint32_t k = 0; k < build_.size(); ++k) leaf_of_[nodes_[k].proxy()] = k;
+}
+
+// Pass 3b: the inner nodes over the leaves nodes_[begin, end), split in the middle as in pass
+// 2, allocated depth first after the leaves (a node, then its first subtree's, then its
+// second's), so a subtree's inner nodes are contiguous, as are its leaves. Returns the subtree's
+// root; its heights are exact and it is balanced.
+template <class T>
+std::uint32_t AabbTree<T>::build_inner(std::uint32_t begin, std::uint32_t end, std::uint32_t parent) {
+    if (end - begin == 1) {
+        nodes_[begin].parent = parent;
+        return begin;
+    }
+    const std::uint32_t node = allocate();
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    const std::uint32_t left = build_inner(begin, mid, node);
+    const std::uint32_t right = build_inner(mid, end, node);
+    nodes_[node] = {merged(nodes_[left].box, nodes_[right].box), parent, left, right,
                     1 + std::max(nodes_[left].height, nodes_[right].height)};
     return node;
 }
