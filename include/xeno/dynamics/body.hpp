@@ -453,30 +453,31 @@ template <class T>
 bool rolling_point(const Body<T>& body, std::uint32_t child, const Vec3<T>& outward, Vec3<T>& point) {
     if (body.mesh()) return false;
     const Shape<T>& shape = body.child_shape(child);
+    const auto* sphere = std::get_if<Sphere<T>>(&shape);
+    const auto* capsule = std::get_if<Capsule<T>>(&shape);
+    const auto* cylinder = std::get_if<Cylinder<T>>(&shape);
+    if (!sphere && !capsule && !cylinder) return false;  // before the pose: most parts are flat
     const Transform<T> pose = body.child_transform(child);
-    if (const auto* sphere = std::get_if<Sphere<T>>(&shape)) {
+    if (sphere) {
         point = pose.position + outward * sphere->radius();
         return true;
     }
     const Vec3<T> m = pose.inverse_apply_direction(outward);
     const T along = pose.inverse_apply(point).y;
-    if (const auto* capsule = std::get_if<Capsule<T>>(&shape)) {
+    if (capsule) {
         const T h = capsule->half_height();
         point = pose.apply(Vec3<T>{T(0), std::clamp(along, -h, h), T(0)} + m * capsule->radius());
         return true;
     }
-    if (const auto* cylinder = std::get_if<Cylinder<T>>(&shape)) {
-        const Vec3<T> radial{m.x, T(0), m.z};
-        const T across = length(radial);
-        // Its side only, as Cylinder::support_face's side line: on a rim the stored anchors may be
-        // a cap's polygon, which would all be moved to one rim point (a pile in a bowl then
-        // never settled).
-        if (!(across > T(0.995))) return false;
-        const T h = cylinder->half_height();
-        point = pose.apply(radial * (cylinder->radius() / across) + Vec3<T>{T(0), std::clamp(along, -h, h), T(0)});
-        return true;
-    }
-    return false;
+    // A cylinder: its side only, as Cylinder::support_face's side line. On a rim the stored
+    // anchors may be a cap's polygon, which would all be moved to one rim point (a pile in a
+    // bowl then never settled).
+    const Vec3<T> radial{m.x, T(0), m.z};
+    const T across = length(radial);
+    if (!(across > T(0.995))) return false;
+    const T h = cylinder->half_height();
+    point = pose.apply(radial * (cylinder->radius() / across) + Vec3<T>{T(0), std::clamp(along, -h, h), T(0)});
+    return true;
 }
 
 /// How `body`'s part `child` is round where it touches along the contact normal `n`, read once
