@@ -96,8 +96,8 @@ TEST_CASE_TEMPLATE("a settled world steps without allocating", T, float, double)
 
 TEST_CASE("reserve and 1,000 moving bodies allocate no room in the static bodies' query tree") {
     // The body (224 bytes in float), its world box and last pose (52), the moving bodies' query
-    // tree (88: two 40-byte nodes, the leaf's index and one index of rebuild scratch) and the
-    // deque's blocks: about 380 bytes a body. Both query trees sized for every body took 552
+    // tree (84: two 40-byte nodes and the leaf's index; a rebuild works in place) and the
+    // deque's blocks: about 375 bytes a body. Both query trees sized for every body took 552
     // (the static one never used here); a tree that kept a second copy of the fat boxes, a
     // rebuild buffer of boxes and a proxy id in every node, 420.
     const auto box = std::make_shared<const Shape<float>>(Box<float>(0.5f, 0.5f, 0.5f));

@@ -132,9 +132,8 @@ private:
     std::uint32_t balance(std::uint32_t a);
     void refit_up(std::uint32_t node);
     void replace_child(std::uint32_t parent, std::uint32_t old_child, std::uint32_t new_child);
-    void compact_leaves();
-    void split(std::size_t begin, std::size_t end);
-    void put_leaves_in_order();
+    std::uint32_t leaves_in_proxy_order();
+    void split(std::uint32_t begin, std::uint32_t end);
     std::uint32_t build_inner(std::uint32_t begin, std::uint32_t end, std::uint32_t parent);
     void self_pairs(const std::vector<Aabb<T>>& boxes, std::vector<ProxyPair>& pairs);
     bool needs_reinsert(const Aabb<T>& fat, const Aabb<T>& box) const;
@@ -144,7 +143,6 @@ private:
     std::vector<std::uint32_t> leaf_of_;  ///< proxy id -> leaf node, kNull when absent
     std::vector<NodePair> stack_;         ///< scratch for find_pairs
     std::vector<std::uint32_t> added_;    ///< scratch for find_pairs: proxies new this call
-    std::vector<std::uint32_t> build_;    ///< scratch for the bulk build: leaf nodes
     std::vector<std::uint32_t> counts_;   ///< scratch for sorting the pairs
     std::vector<ProxyPair> scratch_;
     std::uint32_t root_ = kNull;
@@ -267,37 +265,41 @@ void AabbTree<T>::clear() {
     edits_since_build_ = 0;
 }
 
-// Top-down, in three passes over the leaves, which stay where the tree keeps its only copy of
-// each fat box: (1) they move to the front of nodes_ and everything else is dropped; (2) their
-// indices, in proxy order, are split recursively at the median centre along the axis of largest
-// centre spread (split); (3) they are put in the order that leaves them (put_leaves_in_order)
-// and the inner nodes built above them depth first (build_inner). Every split is at the middle
-// of its range, so pass 3 needs only the ranges. The scratch is one index a proxy.
+// Top-down, in place: the leaves, where the tree keeps its only copy of each fat box, are put at
+// the front of nodes_ in proxy order and everything else dropped (leaves_in_proxy_order); they
+// are then split recursively at the median centre along the axis of largest centre spread, so
+// a subtree's leaves lie side by side (split), and the inner nodes are built above them, depth
+// first (build_inner). Every split is at the middle of its range, so the last pass needs only
+// the ranges. No scratch: the leaves are moved, not indexed.
 template <class T>
 void AabbTree<T>::rebuild() {
-    compact_leaves();
-    build_.clear();
-    for (std::uint32_t p = 0; p < leaf_of_.size(); ++p)
-        if (leaf_of_[p] != kNull) build_.push_back(leaf_of_[p]);
-    const std::uint32_t n = static_cast<std::uint32_t>(build_.size());
+    const std::uint32_t n = leaves_in_proxy_order();
     split(0, n);
-    put_leaves_in_order();
     root_ = n == 0 ? kNull : build_inner(0, n, kNull);
+    for (std::uint32_t k = 0; k < n; ++k) leaf_of_[nodes_[k].proxy()] = k;
     edits_since_build_ = 0;
 }
 
-// The leaves to nodes_[0, proxy_count_) in the order they had, the other nodes dropped.
+// The leaves to nodes_[0, n) with the k-th proxy in the tree at k; returns n. First packed in
+// the order they lie, then each sent to its rank, which it carries in `parent` until then (the
+// build sets every parent again).
 template <class T>
-void AabbTree<T>::compact_leaves() {
-    std::uint32_t next = 0;
+std::uint32_t AabbTree<T>::leaves_in_proxy_order() {
+    std::uint32_t n = 0;
     for (std::uint32_t i = 0; i < nodes_.size(); ++i) {
         if (nodes_[i].height != 0) continue;  // inner or free
-        nodes_[next] = nodes_[i];
-        leaf_of_[nodes_[next].proxy()] = next;
-        ++next;
+        nodes_[n] = nodes_[i];
+        leaf_of_[nodes_[n].proxy()] = n;
+        ++n;
     }
-    nodes_.resize(next);
+    nodes_.resize(n);
     free_ = kNull;
+    std::uint32_t rank = 0;
+    for (const std::uint32_t leaf : leaf_of_)
+        if (leaf != kNull) nodes_[leaf].parent = rank++;
+    for (std::uint32_t k = 0; k < n; ++k)
+        while (nodes_[k].parent != k) std::swap(nodes_[k], nodes_[nodes_[k].parent]);
+    return n;
 }
 
 namespace detail {
@@ -412,7 +414,6 @@ void AabbTree<T>::reserve(std::size_t proxies) {
     };
     grow(nodes_, 2 * proxies);
     grow(leaf_of_, proxies);
-    grow(build_, proxies);
 }
 
 template <class T>
@@ -599,50 +600,27 @@ std::uint32_t AabbTree<T>::balance(std::uint32_t ia) {
     return ic;
 }
 
-// Pass 2 of rebuild over build_[begin, end): the leaves below the median centre along the axis
-// of largest centre spread to the first half, then each half the same way.
+// The leaves nodes_[begin, end) below the median centre along the axis of largest centre spread
+// to the first half, then each half the same way.
 template <class T>
-void AabbTree<T>::split(std::size_t begin, std::size_t end) {
+void AabbTree<T>::split(std::uint32_t begin, std::uint32_t end) {
     if (end - begin < 2) return;
     Aabb<T> centres;
-    for (std::size_t k = begin; k < end; ++k) centres.merge(nodes_[build_[k]].box.center());
+    for (std::uint32_t k = begin; k < end; ++k) centres.merge(nodes_[k].box.center());
     const int axis = max_axis(centres.max - centres.min);
-    const auto centre = [this, axis](std::uint32_t leaf) {  // as Aabb::center, on one axis
-        return nodes_[leaf].box.min[axis] * T(0.5) + nodes_[leaf].box.max[axis] * T(0.5);
+    const auto centre = [axis](const Node& leaf) {  // as Aabb::center, on one axis
+        return leaf.box.min[axis] * T(0.5) + leaf.box.max[axis] * T(0.5);
     };
-    const std::size_t mid = begin + (end - begin) / 2;
-    const auto first = build_.begin();
-    std::nth_element(first + static_cast<std::ptrdiff_t>(begin), first + static_cast<std::ptrdiff_t>(mid),
-                     first + static_cast<std::ptrdiff_t>(end),
-                     [&centre](std::uint32_t x, std::uint32_t y) { return centre(x) < centre(y); });
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    const auto first = nodes_.begin();
+    std::nth_element(first + begin, first + mid, first + end,
+                     [&centre](const Node& x, const Node& y) { return centre(x) < centre(y); });
     split(begin, mid);
     split(mid, end);
 }
 
-// Pass 3a: nodes_[k] becomes the leaf build_[k], following each cycle of the permutation once
-// (a visited index is marked by build_[k] = k), so a subtree's leaves lie side by side.
-template <class T>
-void AabbTree<T>::put_leaves_in_order() {
-    for (std::uint32_t k = 0; k < build_.size(); ++k) {
-        if (build_[k] == k) continue;
-        const Node first = nodes_[k];
-        std::uint32_t j = k;
-        for (;;) {
-            const std::uint32_t from = build_[j];
-            build_[j] = j;
-            if (from == k) {
-                nodes_[j] = first;
-                break;
-            }
-            nodes_[j] = nodes_[from];
-            j = from;
-        }
-    }
-    for (std::uint32_t k = 0; k < build_.size(); ++k) leaf_of_[nodes_[k].proxy()] = k;
-}
-
-// Pass 3b: the inner nodes over the leaves nodes_[begin, end), split in the middle as in pass
-// 2, allocated depth first after the leaves (a node, then its first subtree's, then its
+// The inner nodes over the leaves nodes_[begin, end), split in the middle as split did,
+// allocated depth first after the leaves (a node, then its first subtree's, then its
 // second's), so a subtree's inner nodes are contiguous, as are its leaves. Returns the subtree's
 // root; its heights are exact and it is balanced.
 template <class T>
