@@ -24,9 +24,13 @@
 // Empty boxes (free slots) never pair. Boxes must not contain NaN.
 // When no box changed since the last call (a world asleep, or at rest), steps 3 and 4 would find
 // the same pairs again: the last call's are returned instead.
+// Given a task system with several workers, step 4 sweeps the columns in parallel, each into a
+// list of its own, and joins the lists in column order: the same pairs in the same order as one
+// thread finds them, however the columns are cut and ordered (docs/parallel.md).
 #pragma once
 
 #include "../math/aabb.hpp"
+#include "../task_system.hpp"
 #include "pair.hpp"
 
 #include <algorithm>
@@ -41,8 +45,8 @@ template <class T>
 class SweepAndPrune {
 public:
     /// Recomputes the overlapping pairs of `boxes` (a < b, sorted, each once; touching counts),
-    /// reusing the previous order.
-    void find_pairs(const std::vector<Aabb<T>>& boxes, std::vector<ProxyPair>& pairs);
+    /// reusing the previous order; the columns' sweeps run on `tasks` when it has several workers.
+    void find_pairs(const std::vector<Aabb<T>>& boxes, std::vector<ProxyPair>& pairs, TaskSystem* tasks = nullptr);
     /// The axis (0, 1, 2) used by the last sweep.
     int axis() const { return axis_; }
     /// The number of columns of the last sweep (1: a single sweep over all boxes).
@@ -59,6 +63,12 @@ private:
         bool empty() const { return max < min; }
     };
     static constexpr std::size_t kMaxCells = 256;  ///< per cross axis
+    /// Fewest columns a worker is handed: one. Columns exist only past 256 boxes and hold 64 or
+    /// more each (often hundreds: a scene spread flat is cut along one axis only), tens of µs of
+    /// sweeping, more than handing out a range costs.
+    static constexpr std::uint32_t kColumnsPerRange = 1;
+
+    void sweep_column(const Item* sweep, std::size_t column, std::vector<ProxyPair>& out) const;
 
     std::vector<Item> order_;                     ///< every proxy, sorted by (min, proxy)
     std::vector<Item> items_;                     ///< the columns' copies, column after column
@@ -68,14 +78,15 @@ private:
     std::vector<T> sizes_;                        ///< scratch: sampled box sizes
     std::vector<std::uint32_t> counts_;           ///< scratch for sorting the pairs
     std::vector<ProxyPair> scratch_;
-    std::vector<ProxyPair> last_pairs_;  ///< the last call's pairs, for a call whose boxes are the same
+    std::vector<std::vector<ProxyPair>> column_pairs_;  ///< per column, when the sweeps run in parallel
+    std::vector<ProxyPair> last_pairs_;                 ///< the last call's pairs, for a call whose boxes are the same
     bool last_valid_ = false;
     int axis_ = -1;
     std::size_t cells_u_ = 1, cells_v_ = 1;
 };
 
 template <class T>
-void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector<ProxyPair>& pairs) {
+void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector<ProxyPair>& pairs, TaskSystem* tasks) {
     pairs.clear();
     const std::size_t n = boxes.size();
     constexpr T inf = ScalarTraits<T>::infinity;
@@ -210,28 +221,45 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
         start_[1] = static_cast<std::uint32_t>(order_.size());  // empty boxes at the end pair with nothing
     }
 
-    // 4. The sweep, column by column.
-    for (std::size_t column = 0; column < columns; ++column) {
-        const std::size_t cu = column / cells_v_, cv = column % cells_v_;
-        const Item* first = sweep + start_[column];
-        const Item* last = sweep + start_[column + 1];
-        for (const Item* a = first; a != last; ++a) {
-            const T max_a = a->max;
-            for (const Item* b = a + 1; b != last && b->min <= max_a; ++b) {
-                // & rather than &&: the four outcomes are close to coin flips, and one
-                // well-predicted branch on their conjunction is faster than four mispredicted ones.
-                const bool cross =
-                    (a->min_u <= b->max_u) & (b->min_u <= a->max_u) & (a->min_v <= b->max_v) & (b->min_v <= a->max_v);
-                if (!cross) continue;
-                // Shared columns: only the one where both boxes are present first reports.
-                if (std::max(a->first_u, b->first_u) != cu || std::max(a->first_v, b->first_v) != cv) continue;
-                pairs.push_back(a->proxy < b->proxy ? ProxyPair{a->proxy, b->proxy} : ProxyPair{b->proxy, a->proxy});
+    // 4. The sweep, column by column (on several workers each column into its own list, joined
+    //    in column order: the pairs come out as one thread lists them).
+    if (tasks != nullptr && tasks->workers() > 1 && columns > kColumnsPerRange) {
+        column_pairs_.resize(columns);
+        parallel_for(tasks, static_cast<std::uint32_t>(columns), kColumnsPerRange, [&](std::uint32_t begin, std::uint32_t end) {
+            for (std::uint32_t column = begin; column < end; ++column) {
+                column_pairs_[column].clear();
+                sweep_column(sweep, column, column_pairs_[column]);
             }
-        }
+        });
+        for (std::size_t column = 0; column < columns; ++column)
+            pairs.insert(pairs.end(), column_pairs_[column].begin(), column_pairs_[column].end());
+    } else {
+        for (std::size_t column = 0; column < columns; ++column) sweep_column(sweep, column, pairs);
     }
     detail::sort_pairs_by_first(pairs, n, counts_, scratch_);
     last_pairs_ = pairs;
     last_valid_ = true;
+}
+
+/// Appends the pairs of one column (step 4 of find_pairs): `sweep` holds the columns' boxes, each
+/// column sorted.
+template <class T>
+void SweepAndPrune<T>::sweep_column(const Item* sweep, std::size_t column, std::vector<ProxyPair>& out) const {
+    const std::size_t cu = column / cells_v_, cv = column % cells_v_;
+    const Item* first = sweep + start_[column];
+    const Item* last = sweep + start_[column + 1];
+    for (const Item* a = first; a != last; ++a) {
+        const T max_a = a->max;
+        for (const Item* b = a + 1; b != last && b->min <= max_a; ++b) {
+            // & rather than &&: the four outcomes are close to coin flips, and one well-predicted
+            // branch on their conjunction is faster than four mispredicted ones.
+            const bool cross = (a->min_u <= b->max_u) & (b->min_u <= a->max_u) & (a->min_v <= b->max_v) & (b->min_v <= a->max_v);
+            if (!cross) continue;
+            // Shared columns: only the one where both boxes are present first reports.
+            if (std::max(a->first_u, b->first_u) != cu || std::max(a->first_v, b->first_v) != cv) continue;
+            out.push_back(a->proxy < b->proxy ? ProxyPair{a->proxy, b->proxy} : ProxyPair{b->proxy, a->proxy});
+        }
+    }
 }
 
 namespace f32 {

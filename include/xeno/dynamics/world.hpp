@@ -943,13 +943,11 @@ void World<T>::step(T dt) {
         seconds = std::chrono::duration<double>(now - mark).count();
         mark = now;
     };
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i)
-        if (bodies_[i].alive_) previous_pose_[i] = bodies_[i].transform();
-    update_bounds(dt);
+    update_bounds(dt);  // (and keeps each body's pose before the step in previous_pose_)
     lap(stats_.seconds.bounds);
     switch (settings_.broad_phase) {
         case BroadPhaseKind::brute_force: brute_force_pairs(bounds_, pairs_); break;
-        case BroadPhaseKind::sweep_and_prune: sweep_.find_pairs(bounds_, pairs_); break;
+        case BroadPhaseKind::sweep_and_prune: sweep_.find_pairs(bounds_, pairs_, tasks_.get()); break;
         case BroadPhaseKind::aabb_tree: tree_.find_pairs(bounds_, pairs_); break;
     }
     stats_.broad_pairs = pairs_.size();
@@ -1100,6 +1098,8 @@ void World<T>::update_bounds(T dt) {
     // so contacts exist before the bodies meet. The early-out's bound of each convex body is
     // placed here too: once per body, not per pair.
     // (After bodies were added or a snapshot restored, every body's bound is placed again.)
+    // Each body's pose before the step is kept here as well, in the same parallel pass (the
+    // query tree compares against it after the step, interpolated_transform blends from it).
     const bool all = early_out_.size() != bodies_.size() || settings_.speculative_distance != bounds_margin_;
     if (all) early_out_.resize(bodies_.size()), bounds_asleep_.assign(bodies_.size(), 0);
     bounds_margin_ = settings_.speculative_distance;
@@ -1111,7 +1111,9 @@ void World<T>::update_bounds(T dt) {
         tasks_.get(), static_cast<std::uint32_t>(bodies_.size()), bounds_range, [&](std::uint32_t begin, std::uint32_t end) {
             for (std::uint32_t i = begin; i < end; ++i) {
                 Body<T>& b = bodies_[i];
-                if (!b.alive_ || !b.enabled_) continue;  // a disabled body's box stays empty
+                if (!b.alive_) continue;
+                previous_pose_[i] = b.transform();
+                if (!b.enabled_) continue;  // a disabled body's box stays empty
                 if (b.type_ == BodyType::static_body && !b.moved_) {
                     if (all) place_bound(i, b);
                     continue;
