@@ -152,7 +152,7 @@ TEST_CASE_TEMPLATE("bodies in one place, a hair apart or too far apart to measur
     }
 }
 
-TEST_CASE_TEMPLATE("400 boxes spread over several sweep columns fall and land on any worker count to one worker's bits", T, float,
+TEST_CASE_TEMPLATE("300 boxes spread over several sweep columns land on any worker count to one worker's bits", T, float,
                    double) {
     // Past 256 boxes spread on the ground the sweep and prune cuts the scene into columns, which
     // several workers sweep in parallel (broadphase/sweep_and_prune.hpp).
@@ -163,9 +163,9 @@ TEST_CASE_TEMPLATE("400 boxes spread over several sweep columns fall and land on
         world.create_body(Box<T>(T(40), T(0.5), T(40)), ground);
         scenes::Random rng(7);
         const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
-        for (int i = 0; i < 400; ++i) {
+        for (int i = 0; i < 300; ++i) {  // turned at random, their lowest corners 3 to 13 cm up
             BodyDef<T> def;
-            def.position = {T(1.5) * T(i % 20 - 10), T(1) + T(0.25) * T(i % 3), T(1.5) * T(i / 20 - 10)};
+            def.position = {T(1.5) * T(i % 20 - 10), T(0.9) + T(0.05) * T(i % 3), T(1.5) * T(i / 20 - 8)};
             def.orientation = rng.rotation<T>();
             world.create_body(box, def);
         }
@@ -177,18 +177,19 @@ TEST_CASE_TEMPLATE("400 boxes spread over several sweep columns fall and land on
         if (spread.shuffled) world.set_task_system(&shuffled);
         else world.set_workers(spread.workers);
         std::vector<std::uint64_t> out;
-        for (int i = 0; i < 40; ++i) {
+        for (int i = 0; i < 20; ++i) {
             world.step(world.settings().fixed_time_step);
             out.push_back(test::state_hash(world));
             out.push_back(events_hash(world));
         }
+        CHECK(world.last_step_stats().contacts >= 300);  // every box has landed
         return out;
     };
     {  // the scene does cut into columns (a sweep of the same boxes, on its own)
         World<T> world;
         build(world);
         std::vector<Aabb<T>> boxes;
-        for (std::uint32_t slot = 0; slot <= 400; ++slot) boxes.push_back(world.body(BodyId{slot, 0}).world_bounds());
+        for (std::uint32_t slot = 0; slot <= 300; ++slot) boxes.push_back(world.body(BodyId{slot, 0}).world_bounds());
         SweepAndPrune<T> sweep;
         std::vector<ProxyPair> pairs;
         sweep.find_pairs(boxes, pairs);
