@@ -496,6 +496,27 @@ private:
     /// dropped: not wanted; apart: rejected by the early-out (its contacts end); kept: both asleep;
     /// remeasured: a mesh pair that barely moved (its contacts re-measured into remeasured_).
     enum class PairKind : std::uint8_t { dropped, apart, kept, collided, parts, mesh, remeasured };
+    /// Where the merge takes a run of contacts from (narrow_phase): last step's list, the mesh
+    /// pairs' re-measured contacts, the workers' contacts of collided pairs, or the contacts of
+    /// compound and mesh pairs made during the merge.
+    enum class ContactSource : std::uint8_t { last_step, remeasured, job, side };
+    const std::vector<Contact<T>>& contact_source(ContactSource from) const {
+        switch (from) {
+            case ContactSource::last_step: return contacts_;
+            case ContactSource::remeasured: return remeasured_;
+            case ContactSource::job: return job_contacts_;
+            case ContactSource::side: break;
+        }
+        return side_contacts_;
+    }
+    /// Contacts source[begin, begin + count) go to next_contacts_[to …]; `kept`: a sleeping
+    /// pair's, whose was_touching is set from touching.
+    struct PlacedRun {
+        ContactSource from;
+        bool kept;
+        std::uint32_t begin, count, to;
+    };
+    void copy_placed_runs(std::uint32_t count);
     bool remeasure_mesh_pair(const ProxyPair& pair, T margin, T dt, std::size_t old_begin, std::size_t old_end);
     /// The mesh narrow phase's three parts, bound by the first mesh body (see joint_stage_).
     struct MeshStage {
@@ -566,6 +587,7 @@ private:
     void share_support_stiffness(T static_hertz, T h);
     /// Fewest items a worker is handed per stage (task_system.hpp): about a few µs of work each.
     static constexpr std::uint32_t bounds_range = 256, row_range = 64, integrate_range = 256, finish_range = 256;
+    static constexpr std::uint32_t copy_range = 256;  ///< runs of contacts copied into place (narrow phase)
     void order_solver_bodies_in_space();
     void solve(T dt);
     void thin_crowded_pairs();
@@ -659,6 +681,8 @@ private:
     detail::ReboundEnergyCap<T> rebound_cap_;        ///< solve: a bounce gives back no more than it took
     std::vector<std::uint32_t> collide_jobs_;        ///< several workers: the pairs of kind collided, in pair order
     std::vector<Contact<T>> job_contacts_;           ///< several workers: the contact of each of collide_jobs_
+    std::vector<Contact<T>> side_contacts_;          ///< several workers: compound and mesh pairs' contacts (merge)
+    std::vector<PlacedRun> placed_runs_;             ///< several workers: where the merge puts each run of contacts
     std::vector<PartsContact> job_results_;          ///< several workers: what collide_parts did for each of collide_jobs_
     std::vector<Contact<T>> remeasured_;             ///< the re-measured contacts of mesh pairs, in pair order
     std::vector<std::uint32_t> contact_start_;       ///< per slot: the end of its run in contact_list_ (index_contacts)
@@ -1232,32 +1256,54 @@ void World<T>::narrow_phase(T dt) {
         }
     });
 
+    // The merge, in pair order: ended contacts reported, each pair's contacts into `next`. On one
+    // worker they are copied (or made) there at once. On several, this pass only says where each
+    // run of contacts goes (compound and mesh pairs are made into side_contacts_ first), and the
+    // runs are copied in parallel afterwards: a serial copy of every contact (280 bytes in float,
+    // most of them just written by another core) was the largest serial part of the narrow phase.
     std::vector<Contact<T>>& next = next_contacts_;
-    next.clear();
-    next.reserve(pairs_.size());  // most pairs give one contact: no copies while growing (a crowd's first step)
+    std::vector<Contact<T>>& made = parallel ? side_contacts_ : next;  // where compound and mesh pairs append
+    made.clear();
+    placed_runs_.clear();
+    if (!parallel) next.reserve(pairs_.size());  // most pairs give one contact: no copies while growing (a crowd's first step)
+    std::uint32_t placed = 0;
+    const auto place = [&](ContactSource from, std::size_t begin, std::size_t count, bool kept) {
+        if (count == 0) return;
+        if (parallel) {
+            placed_runs_.push_back({from, kept, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(count), placed});
+            placed += static_cast<std::uint32_t>(count);
+            return;
+        }
+        const std::vector<Contact<T>>& source = contact_source(from);
+        for (std::size_t i = begin; i < begin + count; ++i) {
+            next.push_back(source[i]);
+            if (kept) next.back().was_touching = next.back().touching;
+        }
+    };
     old = 0;
     std::size_t job = 0, mesh_job = 0;
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
         const PairWork& work = pair_work_[k];
         while (old < work.old_begin) end_contact(contacts_[old++]);  // no pair this step: ended
         if (work.kind == PairKind::kept) {
-            for (; old < work.old_end; ++old) {
-                next.push_back(contacts_[old]);
-                next.back().was_touching = next.back().touching;
-            }
+            place(ContactSource::last_step, old, work.old_end - old, true);
+            old = work.old_end;
         } else if (work.kind == PairKind::parts || (work.kind == PairKind::collided && !parallel)) {
-            collide_pair(pairs_[k], pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), dt, old, work.old_end, next);
+            const std::size_t before = made.size();
+            collide_pair(pairs_[k], pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt), dt, old, work.old_end, made);
+            if (parallel) place(ContactSource::side, before, made.size() - before, false);
             old = work.old_end;
         } else if (work.kind == PairKind::mesh) {
             const T margin = pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt);
             if (!parallel) (this->*mesh_stage_.manifolds)(pairs_[k], margin, mesh_manifolds_);
+            const std::size_t before = made.size();
             (this->*mesh_stage_.merge)(pairs_[k], margin, old, work.old_end,
-                                       parallel ? mesh_job_manifolds_[mesh_job++] : mesh_manifolds_, next);
+                                       parallel ? mesh_job_manifolds_[mesh_job++] : mesh_manifolds_, made);
+            if (parallel) place(ContactSource::side, before, made.size() - before, false);
             old = work.old_end;
         } else if (work.kind == PairKind::remeasured) {
             const std::uint32_t count = work.old_end - work.old_begin;
-            next.insert(next.end(), remeasured_.begin() + work.remeasured_begin,
-                        remeasured_.begin() + work.remeasured_begin + count);
+            place(ContactSource::remeasured, work.remeasured_begin, count, false);
             stats_.reused_contacts += count;
             old = work.old_end;
         } else if (work.kind == PairKind::collided) {
@@ -1267,14 +1313,35 @@ void World<T>::narrow_phase(T dt) {
             const bool had = old < work.old_end && contacts_[old].child_a == 0 && contacts_[old].child_b == 0;
             if (had && fresh.manifold.count == 0) end_contact(contacts_[old]);
             if (had) ++old;
-            if (fresh.manifold.count > 0) next.push_back(fresh);
+            if (fresh.manifold.count > 0) place(ContactSource::job, job - 1, 1, false);
         }
         for (; old < work.old_end; ++old) end_contact(contacts_[old]);  // dropped, or parts that no longer exist
     }
+    if (parallel) copy_placed_runs(placed);
     while (old < contacts_.size()) end_contact(contacts_[old++]);
     contacts_.swap(next);
     index_contacts(bodies_.size());
     stats_.contacts = contacts_.size();
+}
+
+/// Several workers: every run the merge placed (narrow_phase) copied into next_contacts_, which
+/// holds `count` contacts after it. The runs do not overlap, so they are copied in parallel; the
+/// list is resized, not cleared, so the slots it already had are not cleared first.
+template <class T>
+void World<T>::copy_placed_runs(std::uint32_t count) {
+    next_contacts_.resize(count);
+    parallel_for(tasks_.get(), static_cast<std::uint32_t>(placed_runs_.size()), copy_range,
+                 [&](std::uint32_t begin, std::uint32_t end) {
+                     for (std::uint32_t r = begin; r < end; ++r) {
+                         const PlacedRun& run = placed_runs_[r];
+                         const std::vector<Contact<T>>& source = contact_source(run.from);
+                         for (std::uint32_t i = 0; i < run.count; ++i) {
+                             Contact<T>& c = next_contacts_[run.to + i];
+                             c = source[run.begin + i];
+                             if (run.kept) c.was_touching = c.touching;
+                         }
+                     }
+                 });
 }
 
 // MPR's first test for W pairs at a time (early_out.hpp): a convex pair apart by more than its
