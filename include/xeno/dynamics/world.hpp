@@ -1260,7 +1260,8 @@ void World<T>::narrow_phase(T dt) {
     // worker they are copied (or made) there at once. On several, this pass only says where each
     // run of contacts goes (compound and mesh pairs are made into side_contacts_ first), and the
     // runs are copied in parallel afterwards: a serial copy of every contact (280 bytes in float,
-    // most of them just written by another core) was the largest serial part of the narrow phase.
+    // on two workers half of them just written by the other core) was the largest serial part of
+    // the narrow phase (docs/parallel.md).
     std::vector<Contact<T>>& next = next_contacts_;
     std::vector<Contact<T>>& made = parallel ? side_contacts_ : next;  // where compound and mesh pairs append
     made.clear();
