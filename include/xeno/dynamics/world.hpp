@@ -604,8 +604,9 @@ private:
     /// costs O(log n) per edit amortised. Never allocates: reserve() made the room.
     void refresh_query_tree() {
         for (AabbTree<T>& tree : query_trees_)
-            if (2 * tree.edits_since_build() >= tree.size()) tree.rebuild();
+            if (due_for_rebuild(tree)) tree.rebuild();
     }
+    static bool due_for_rebuild(const AabbTree<T>& tree) { return 2 * tree.edits_since_build() >= tree.size(); }
     AabbTree<T>& query_tree_for(BodyType type) { return query_trees_[type == BodyType::static_body ? 0 : 1]; }
     AabbTree<T>& query_tree_of(std::uint32_t slot) { return query_tree_for(bodies_[slot].type_); }
     void report_events();
@@ -1156,15 +1157,23 @@ void World<T>::update_bounds(T dt) {
 }
 
 // The queries' tree holds each body's current box: after the step, every body whose pose changed
-// gets its new one (a move inside the tree's fat box costs a comparison).
+// gets its new one (a move inside the tree's fat box costs a comparison). Once the moves have
+// brought the tree to its rebuild (refresh_query_tree), it is rebuilt after the loop whatever
+// else moves, so the rest only set their leaves' boxes: the same tree without reinserting each.
 template <class T>
 void World<T>::update_query_tree() {
+    AabbTree<T>& tree = query_trees_[1];
+    bool rebuilding = due_for_rebuild(tree);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         const Body<T>& b = bodies_[i];
         if (!b.alive_ || !b.enabled_ || b.type_ == BodyType::static_body) continue;
         const Transform<T>& before = previous_pose_[i];
         if (b.position_ == before.position && b.orientation_ == before.orientation) continue;
-        query_trees_[1].move(i, b.world_bounds());
+        if (rebuilding) {
+            tree.move_before_rebuild(i, b.world_bounds());
+        } else if (tree.move(i, b.world_bounds())) {
+            rebuilding = due_for_rebuild(tree);
+        }
     }
     refresh_query_tree();
 }
