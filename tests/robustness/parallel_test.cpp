@@ -15,6 +15,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <limits>
 #include <memory>
@@ -199,6 +200,54 @@ TEST_CASE_TEMPLATE("300 boxes spread over several sweep columns land on any work
     for (const Spread& spread : spreads) {
         CAPTURE(spread.name);
         CHECK(hashes(spread) == one);
+    }
+}
+
+TEST_CASE_TEMPLATE("over 512 contacts, the events collected on several workers are one worker's, ended ones pending included", T,
+                   float, double) {
+    // Past two blocks of contacts (World::event_block) several workers collect the events in
+    // parallel: counted per block, then written into place. Rows of boxes pressed side by side
+    // (began, persisted), bodies destroyed between steps (their ended events wait for the next
+    // report and come first) and boxes dropped onto the rows (began later).
+    const auto build = [](World<T>& world) {
+        BodyDef<T> ground;
+        ground.type = BodyType::static_body;
+        ground.position = {T(0), T(-0.5), T(0)};
+        world.create_body(Box<T>(T(30), T(0.5), T(30)), ground);
+        const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
+        for (int i = 0; i < 300; ++i) {  // 15 rows of 20, each box 5 mm into its neighbour
+            BodyDef<T> def;
+            def.position = {T(0.995) * T(i % 20 - 10), T(0.5), T(1.5) * T(i / 20 - 7)};
+            world.create_body(box, def);
+        }
+        for (int i = 0; i < 4; ++i) {  // landing on rows 2, 5, 8 and 11 after about ten steps
+            BodyDef<T> def;
+            def.position = {T(2 * i - 3), T(2.2), T(1.5) * T(3 * i + 2 - 7)};
+            world.create_body(box, def);
+        }
+    };
+    const auto events = [&](const Spread& spread) {
+        World<T> world;
+        build(world);
+        test::ShuffledTasks shuffled(spread.workers);
+        if (spread.shuffled) world.set_task_system(&shuffled);
+        else world.set_workers(spread.workers);
+        std::vector<std::uint64_t> out;
+        std::size_t most = 0;
+        for (int i = 0; i < 24; ++i) {
+            if (i == 5)
+                for (std::uint32_t slot = 3; slot <= 300; slot += 37) world.destroy_body(BodyId{slot, 0});
+            world.step(world.settings().fixed_time_step);
+            out.push_back(events_hash(world));
+            most = std::max(most, world.contact_events().size());
+        }
+        CHECK(most >= 540);  // more than two blocks of contacts: the parallel collection was used
+        return out;
+    };
+    const std::vector<std::uint64_t> one = events(spreads[0]);
+    for (const Spread& spread : spreads) {
+        CAPTURE(spread.name);
+        CHECK(events(spread) == one);
     }
 }
 

@@ -610,6 +610,12 @@ private:
     AabbTree<T>& query_tree_for(BodyType type) { return query_trees_[type == BodyType::static_body ? 0 : 1]; }
     AabbTree<T>& query_tree_of(std::uint32_t slot) { return query_tree_for(bodies_[slot].type_); }
     void report_events();
+    void collect_events();
+    bool makes_event(const Contact<T>& c) const;
+    ContactEvent<T> event_of(const Contact<T>& c) const;
+    /// Contacts a block of the parallel event collection holds (its blocks are fixed, so the
+    /// events land in the same places however the blocks are handed out).
+    static constexpr std::uint32_t event_block = 256;
     // Query helpers (world_query.hpp).
     static void check_ray(const Ray<T>& ray, const char* where);
     bool seen_by(const QueryFilter<T>& filter, std::uint32_t slot) const { return filter.passes(id_of(slot), bodies_[slot]); }
@@ -663,7 +669,8 @@ private:
     std::vector<std::uint64_t> unconnected_pairs_;         ///< sorted keys of jointed pairs that do not collide
     StepStats stats_;
     std::vector<ContactEvent<T>> events_, events_pending_;
-    std::shared_ptr<const Listener> listener_;  ///< shared: a running listener outlives its replacement
+    std::vector<std::uint32_t> event_block_start_;  ///< scratch: where each block's events begin (collect_events)
+    std::shared_ptr<const Listener> listener_;      ///< shared: a running listener outlives its replacement
     std::function<bool(BodyId, BodyId)> filter_;
     T accumulator_{};
     T last_substep_{};  ///< s: the last step's substep, for joint_reaction
@@ -1060,34 +1067,80 @@ void World<T>::thin_crowded_pairs() {
     pairs_.erase(dropped, pairs_.end());
 }
 
+// A contact reports an event when it touches or has just stopped touching, except a pair with no
+// active body (both asleep, or asleep on a static body): it is not re-collided, its contact is
+// unchanged, so "persisted" is not repeated every step.
+template <class T>
+bool World<T>::makes_event(const Contact<T>& c) const {
+    if (!c.touching && !c.was_touching) return false;
+    return !(c.touching && c.was_touching && !active(bodies_[c.a.index]) && !active(bodies_[c.b.index]));
+}
+
+template <class T>
+ContactEvent<T> World<T>::event_of(const Contact<T>& c) const {
+    ContactEvent<T> e;
+    e.kind = !c.touching ? ContactEventKind::ended : (c.was_touching ? ContactEventKind::persisted : ContactEventKind::began);
+    e.a = c.a;
+    e.b = c.b;
+    e.sensor = c.sensor;
+    e.normal = c.manifold.normal;
+    if (c.touching) {
+        const Body<T>& a = bodies_[c.a.index];
+        const Body<T>& b = bodies_[c.b.index];
+        e.count = c.manifold.count;
+        for (int i = 0; i < c.manifold.count; ++i) {
+            const ContactPoint<T>& p = c.manifold.points[static_cast<std::size_t>(i)];
+            e.points[static_cast<std::size_t>(i)] = (a.world_point(p.local_a) + b.world_point(p.local_b)) * T(0.5);
+            e.impulse += p.step_impulse;
+        }
+    }
+    return e;
+}
+
+// The step's events: the ended events recorded since the last report first, then one per contact
+// that makes one, in contact order. On several workers the contacts are cut into fixed blocks,
+// each block's events counted and then written into their places in parallel (a 5,050-box
+// pyramid makes 15,000 events a step, which took 0.6 ms in float and 1.4 ms in double on one
+// thread); the list keeps last step's elements and overwrites them, so only a grown tail is
+// cleared first.
+template <class T>
+void World<T>::collect_events() {
+    const std::uint32_t contacts = static_cast<std::uint32_t>(contacts_.size());
+    if (workers() <= 1 || contacts < 2 * event_block) {
+        events_.swap(events_pending_);
+        events_pending_.clear();
+        events_.reserve(events_.size() + contacts_.size());
+        for (const Contact<T>& c : contacts_)
+            if (makes_event(c)) events_.push_back(event_of(c));
+        return;
+    }
+    const std::uint32_t blocks = (contacts + event_block - 1) / event_block;
+    const auto block_end = [&](std::uint32_t k) { return std::min(contacts, (k + 1) * event_block); };
+    event_block_start_.resize(blocks + std::size_t(1));
+    parallel_for(tasks_.get(), blocks, 1u, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t k = begin; k < end; ++k) {
+            std::uint32_t count = 0;
+            for (std::uint32_t i = k * event_block; i < block_end(k); ++i) count += makes_event(contacts_[i]) ? 1u : 0u;
+            event_block_start_[k + 1] = count;
+        }
+    });
+    event_block_start_[0] = static_cast<std::uint32_t>(events_pending_.size());
+    for (std::uint32_t k = 0; k < blocks; ++k) event_block_start_[k + 1] += event_block_start_[k];
+    events_.resize(event_block_start_[blocks]);
+    std::copy(events_pending_.begin(), events_pending_.end(), events_.begin());
+    events_pending_.clear();
+    parallel_for(tasks_.get(), blocks, 1u, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t k = begin; k < end; ++k) {
+            std::uint32_t to = event_block_start_[k];
+            for (std::uint32_t i = k * event_block; i < block_end(k); ++i)
+                if (makes_event(contacts_[i])) events_[to++] = event_of(contacts_[i]);
+        }
+    });
+}
+
 template <class T>
 void World<T>::report_events() {
-    events_.swap(events_pending_);  // ended events recorded since the last report come first
-    events_pending_.clear();
-    events_.reserve(events_.size() + contacts_.size());
-    for (const Contact<T>& c : contacts_) {
-        if (!c.touching && !c.was_touching) continue;
-        // A pair with no active body (both asleep, or asleep on a static body) is not
-        // re-collided: its contact is unchanged, so "persisted" is not repeated every step.
-        if (c.touching && c.was_touching && !active(bodies_[c.a.index]) && !active(bodies_[c.b.index])) continue;
-        ContactEvent<T> e;
-        e.kind = !c.touching ? ContactEventKind::ended : (c.was_touching ? ContactEventKind::persisted : ContactEventKind::began);
-        e.a = c.a;
-        e.b = c.b;
-        e.sensor = c.sensor;
-        e.normal = c.manifold.normal;
-        if (c.touching) {
-            const Body<T>& a = bodies_[c.a.index];
-            const Body<T>& b = bodies_[c.b.index];
-            e.count = c.manifold.count;
-            for (int i = 0; i < c.manifold.count; ++i) {
-                const ContactPoint<T>& p = c.manifold.points[static_cast<std::size_t>(i)];
-                e.points[static_cast<std::size_t>(i)] = (a.world_point(p.local_a) + b.world_point(p.local_b)) * T(0.5);
-                e.impulse += p.step_impulse;
-            }
-        }
-        events_.push_back(e);
-    }
+    collect_events();
     const auto before = [](const ContactEvent<T>& x, const ContactEvent<T>& y) {
         return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
     };
