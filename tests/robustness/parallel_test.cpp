@@ -17,8 +17,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <type_traits>
@@ -248,6 +250,52 @@ TEST_CASE_TEMPLATE("over 512 contacts, the events collected on several workers a
     for (const Spread& spread : spreads) {
         CAPTURE(spread.name);
         CHECK(events(spread) == one);
+    }
+}
+
+TEST_CASE_TEMPLATE("after steps on several workers the query tree answers as after one worker's", T, float, double) {
+    // Several workers mark in parallel the bodies that leave their query leaves' boxes, and only
+    // those are moved in the tree (World::update_query_tree). Boxes falling in layers leave them
+    // every step, so the tree is also rebuilt; a body left unmarked would keep a stale leaf, and
+    // the boxes and rays here (any-hit rays return the first body the tree's walk meets) would
+    // tell.
+    const auto answers = [](const Spread& spread) {
+        World<T> world;
+        BodyDef<T> ground;
+        ground.type = BodyType::static_body;
+        ground.position = {T(0), T(-0.5), T(0)};
+        world.create_body(Box<T>(T(30), T(0.5), T(30)), ground);
+        scenes::Random rng(11);
+        const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
+        for (int i = 0; i < 300; ++i) {  // 4 layers of 9 × 9, 1.5 m apart
+            BodyDef<T> def;
+            def.position = {T(1.5) * T(i % 9 - 4), T(2) + T(1.5) * T(i / 81), T(1.5) * T(i % 81 / 9 - 4)};
+            def.orientation = rng.rotation<T>();
+            world.create_body(box, def);
+        }
+        test::ShuffledTasks shuffled(spread.workers);
+        if (spread.shuffled) world.set_task_system(&shuffled);
+        else world.set_workers(spread.workers);
+        std::vector<std::int64_t> out;
+        for (int step = 0; step < 25; ++step) {
+            world.step(world.settings().fixed_time_step);
+            for (int k = 0; k < 9; ++k) {
+                const T x = T(1.5) * T(k - 4), y = T(0.2) * T(k);
+                for (const BodyId id : world.query_aabb(Aabb<T>{{x - T(1), y, T(-7)}, {x + T(1), y + T(1.5), T(7)}}))
+                    out.push_back(id.index);
+                out.push_back(-1);
+                Ray<T> ray;
+                ray.origin = {x + T(0.3), T(12), T(1.5) * T(k - 4) + T(0.2)};
+                const std::optional<WorldRayHit<T>> any = world.raycast_any(ray);
+                out.push_back(any ? std::int64_t(any->body.index) : -2);
+            }
+        }
+        return out;
+    };
+    const std::vector<std::int64_t> one = answers(spreads[0]);
+    for (const Spread& spread : spreads) {
+        CAPTURE(spread.name);
+        CHECK(answers(spread) == one);
     }
 }
 

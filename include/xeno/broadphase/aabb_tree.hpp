@@ -75,6 +75,9 @@ public:
     /// most fat boxes every step) then costs a comparison a proxy instead of a removal and an
     /// insertion, and gives the same tree: rebuild() reads only the leaves, in proxy order.
     bool move_before_rebuild(std::uint32_t proxy, const Aabb<T>& box);
+    /// True when move(proxy, box) would reinsert proxy (in the tree): box leaves its fat box, or
+    /// the fat box reaches more than four margins beyond it. Reads only; changes nothing.
+    bool would_reinsert(std::uint32_t proxy, const Aabb<T>& box) const { return needs_reinsert(fat_box(proxy), box); }
     /// Removes every proxy.
     void clear();
     /// Rebuilds the tree top-down from the current fat boxes (balanced, depth-first layout).
