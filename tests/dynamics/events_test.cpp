@@ -5,6 +5,11 @@
 #include "support/approx.hpp"
 #include "support/sim.hpp"
 
+#include <algorithm>
+#include <memory>
+#include <utility>
+#include <vector>
+
 using namespace xeno;
 
 namespace {
@@ -65,6 +70,50 @@ TEST_CASE_TEMPLATE("contact events begin once, persist while touching and end wh
         for (const ContactEvent<T>& e : w.contact_events()) ended += e.kind == ContactEventKind::ended;
     });
     CHECK(ended == 1);
+}
+
+TEST_CASE_TEMPLATE("the ended events of bodies destroyed between steps join the step's events in pair order", T, float, double) {
+    // The step's events come in pair order, and the ended events recorded between steps are
+    // merged in (World::sort_events). 300 boxes in rows on the ground, each touching its
+    // neighbours; some destroyed between steps, on one worker and on two (which collect the
+    // events in parallel past 512 contacts).
+    for (const unsigned workers : {1u, 2u}) {
+        CAPTURE(workers);
+        World<T> w;
+        w.set_workers(workers);
+        scenes::add_ground(w, T(40));
+        const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
+        for (int i = 0; i < 300; ++i) {
+            BodyDef<T> d;
+            d.position = {T(i % 25 - 12), T(0.5), T(1.5) * T(i / 25 - 6)};
+            w.create_body(box, d);
+        }
+        for (int i = 0; i < 3; ++i) w.step(w.settings().fixed_time_step);
+        for (int round = 0; round < 3; ++round) {
+            CAPTURE(round);
+            std::vector<std::uint32_t> victims;
+            for (std::uint32_t k = 0; k < 5; ++k) victims.push_back(2 + 8 * std::uint32_t(round) + 61 * k);
+            const auto victim = [&](BodyId id) { return std::find(victims.begin(), victims.end(), id.index) != victims.end(); };
+            std::vector<std::pair<std::uint32_t, std::uint32_t>> touching;  // the victims' pairs before
+            for (const ContactEvent<T>& e : w.contact_events())
+                if (e.kind != ContactEventKind::ended && (victim(e.a) || victim(e.b))) touching.push_back({e.a.index, e.b.index});
+            REQUIRE(touching.size() >= 5);  // the ground, at least
+            for (const std::uint32_t slot : victims) w.destroy_body(BodyId{slot, 0});
+            w.step(w.settings().fixed_time_step);
+            const std::vector<ContactEvent<T>>& events = w.contact_events();
+            std::vector<std::pair<std::uint32_t, std::uint32_t>> ended;
+            for (std::size_t i = 0; i < events.size(); ++i) {
+                const std::pair<std::uint32_t, std::uint32_t> pair{events[i].a.index, events[i].b.index};
+                if (i > 0) CHECK(std::make_pair(events[i - 1].a.index, events[i - 1].b.index) < pair);  // in pair order
+                if (victim(events[i].a) || victim(events[i].b)) {
+                    CHECK(events[i].kind == ContactEventKind::ended);
+                    ended.push_back(pair);
+                }
+            }
+            CHECK(ended == touching);
+            CHECK(events.size() - ended.size() >= 2 * 256);  // the step's own: past two blocks of 256 contacts
+        }
+    }
 }
 
 TEST_CASE_TEMPLATE("without relax iterations a resting box's step impulse still carries its weight", T, float, double) {
