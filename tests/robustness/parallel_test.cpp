@@ -74,6 +74,13 @@ struct Spread {
 };
 constexpr Spread spreads[] = {{"1 worker", 1, false}, {"2 workers", 2, false}, {"3 workers", 3, false}, {"shuffled", 3, true}};
 
+/// Steps `world` as `spread` says; `shuffled` (made with spread.workers) must outlive its steps.
+template <class T>
+void use_spread(World<T>& world, const Spread& spread, test::ShuffledTasks& shuffled) {
+    if (spread.shuffled) world.set_task_system(&shuffled);
+    else world.set_workers(spread.workers);
+}
+
 /// Every event field that is a number, as bits, in order.
 template <class T>
 std::uint64_t events_hash(const World<T>& world) {
@@ -97,8 +104,7 @@ std::vector<std::uint64_t> run(const std::string& scene, int steps, const Spread
     World<T> world;
     scenes::build<T>(scene, world);
     test::ShuffledTasks shuffled(spread.workers);
-    if (spread.shuffled) world.set_task_system(&shuffled);
-    else world.set_workers(spread.workers);
+    use_spread(world, spread, shuffled);
     std::vector<std::uint64_t> hashes;
     for (int i = 0; i < steps; ++i) {
         world.step(world.settings().fixed_time_step);
@@ -160,10 +166,7 @@ TEST_CASE_TEMPLATE("300 boxes spread over several sweep columns land on any work
     // Past 256 boxes spread on the ground the sweep and prune cuts the scene into columns, which
     // several workers sweep in parallel (broadphase/sweep_and_prune.hpp).
     const auto build = [](World<T>& world) {
-        BodyDef<T> ground;
-        ground.type = BodyType::static_body;
-        ground.position = {T(0), T(-0.5), T(0)};
-        world.create_body(Box<T>(T(40), T(0.5), T(40)), ground);
+        scenes::add_ground(world, T(40));
         scenes::Random rng(7);
         const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
         for (int i = 0; i < 300; ++i) {  // turned at random, their lowest corners 3 to 13 cm up
@@ -177,8 +180,7 @@ TEST_CASE_TEMPLATE("300 boxes spread over several sweep columns land on any work
         World<T> world;
         build(world);
         test::ShuffledTasks shuffled(spread.workers);
-        if (spread.shuffled) world.set_task_system(&shuffled);
-        else world.set_workers(spread.workers);
+        use_spread(world, spread, shuffled);
         std::vector<std::uint64_t> out;
         for (int i = 0; i < 20; ++i) {
             world.step(world.settings().fixed_time_step);
@@ -212,10 +214,7 @@ TEST_CASE_TEMPLATE("over 512 contacts, the events collected on several workers a
     // (began, persisted), bodies destroyed between steps (their ended events wait for the next
     // report and come first) and boxes dropped onto the rows (began later).
     const auto build = [](World<T>& world) {
-        BodyDef<T> ground;
-        ground.type = BodyType::static_body;
-        ground.position = {T(0), T(-0.5), T(0)};
-        world.create_body(Box<T>(T(30), T(0.5), T(30)), ground);
+        scenes::add_ground(world, T(30));
         const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
         for (int i = 0; i < 300; ++i) {  // 15 rows of 20, each box 5 mm into its neighbour
             BodyDef<T> def;
@@ -232,8 +231,7 @@ TEST_CASE_TEMPLATE("over 512 contacts, the events collected on several workers a
         World<T> world;
         build(world);
         test::ShuffledTasks shuffled(spread.workers);
-        if (spread.shuffled) world.set_task_system(&shuffled);
-        else world.set_workers(spread.workers);
+        use_spread(world, spread, shuffled);
         std::vector<std::uint64_t> out;
         std::size_t most = 0;
         for (int i = 0; i < 24; ++i) {
@@ -261,10 +259,7 @@ TEST_CASE_TEMPLATE("after steps on several workers the query tree answers as aft
     // tell.
     const auto answers = [](const Spread& spread) {
         World<T> world;
-        BodyDef<T> ground;
-        ground.type = BodyType::static_body;
-        ground.position = {T(0), T(-0.5), T(0)};
-        world.create_body(Box<T>(T(30), T(0.5), T(30)), ground);
+        scenes::add_ground(world, T(30));
         scenes::Random rng(11);
         const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
         for (int i = 0; i < 300; ++i) {  // 4 layers of 9 × 9, 1.5 m apart
@@ -274,8 +269,7 @@ TEST_CASE_TEMPLATE("after steps on several workers the query tree answers as aft
             world.create_body(box, def);
         }
         test::ShuffledTasks shuffled(spread.workers);
-        if (spread.shuffled) world.set_task_system(&shuffled);
-        else world.set_workers(spread.workers);
+        use_spread(world, spread, shuffled);
         std::vector<std::int64_t> out;
         for (int step = 0; step < 25; ++step) {
             world.step(world.settings().fixed_time_step);
