@@ -25,35 +25,24 @@ namespace detail {
 inline void sort_pairs(std::vector<ProxyPair>& pairs) { std::sort(pairs.begin(), pairs.end()); }
 
 /// Sorts pairs (a < b < proxies) as detail::sort_pairs does, in O(proxies + pairs) when there are
-/// many: a counting sort on a, then each run of equal a sorted on b (runs are short: a body has a
-/// handful of partners; a long run, say a huge box's, gets std::sort).
+/// many: a least-significant-digit radix sort with the proxy ids as digits, a counting sort on b
+/// and then a stable one on a. (Counting on a alone and sorting each run of equal a by b cost twice
+/// as much: a run's order is random, and a huge box's run, the ground's, needed std::sort.)
 inline void sort_pairs_by_first(std::vector<ProxyPair>& pairs, std::size_t proxies, std::vector<std::uint32_t>& counts,
                                 std::vector<ProxyPair>& scratch) {
     if (pairs.size() < 64 || pairs.size() < proxies / 8) {
         sort_pairs(pairs);
         return;
     }
-    counts.assign(proxies + 1, 0);
-    for (const ProxyPair& p : pairs) ++counts[p.a + 1];
-    for (std::size_t k = 0; k < proxies; ++k) counts[k + 1] += counts[k];
     scratch.resize(pairs.size());
-    for (const ProxyPair& p : pairs) scratch[counts[p.a]++] = p;  // afterwards counts[a] = end of run a
-    std::size_t begin = 0;
-    for (std::size_t a = 0; a < proxies && begin < scratch.size(); ++a) {
-        const std::size_t end = counts[a];
-        if (end - begin > 16) {
-            std::sort(scratch.begin() + static_cast<std::ptrdiff_t>(begin), scratch.begin() + static_cast<std::ptrdiff_t>(end));
-        } else {
-            for (std::size_t i = begin + 1; i < end; ++i) {
-                const ProxyPair p = scratch[i];
-                std::size_t j = i;
-                for (; j > begin && p.b < scratch[j - 1].b; --j) scratch[j] = scratch[j - 1];
-                scratch[j] = p;
-            }
-        }
-        begin = end;
-    }
-    pairs.swap(scratch);
+    auto counting_sort = [&](const std::vector<ProxyPair>& from, std::vector<ProxyPair>& to, auto key) {
+        counts.assign(proxies + 1, 0);
+        for (const ProxyPair& p : from) ++counts[key(p) + 1];
+        for (std::size_t k = 0; k < proxies; ++k) counts[k + 1] += counts[k];
+        for (const ProxyPair& p : from) to[counts[key(p)]++] = p;  // stable: equal keys keep their order
+    };
+    counting_sort(pairs, scratch, [](const ProxyPair& p) { return p.b; });
+    counting_sort(scratch, pairs, [](const ProxyPair& p) { return p.a; });
 }
 
 /// A well-spread 64-bit hash of a pair of slots (the SplitMix64 finaliser, Steele, Lea and
