@@ -268,7 +268,8 @@ std::size_t SweepAndPrune<T>::sweep_column(const Item* sweep, std::size_t column
         for (const Item* b = a + 1; b != end; ++b) {
             const bool cross = (a->min_u <= b->max_u) & (b->min_u <= a->max_u) & (a->min_v <= b->max_v) & (b->min_v <= a->max_v);
             // Shared columns: only the one where both boxes are present first reports.
-            const bool here = (std::max(a->first_u, b->first_u) == cu) & (std::max(a->first_v, b->first_v) == cv);
+            const std::size_t top_u = std::max(a->first_u, b->first_u), top_v = std::max(a->first_v, b->first_v);
+            const bool here = (top_u == cu) & (top_v == cv);
             dst[used] = a->proxy < b->proxy ? ProxyPair{a->proxy, b->proxy} : ProxyPair{b->proxy, a->proxy};
             used += static_cast<std::size_t>(cross & here);
         }

@@ -588,7 +588,8 @@ private:
     void share_support_stiffness(T static_hertz, T h);
     /// Fewest items a worker is handed per stage (task_system.hpp): about a few µs of work each.
     static constexpr std::uint32_t bounds_range = 256, row_range = 64, integrate_range = 256, finish_range = 256;
-    static constexpr std::uint32_t copy_range = 256;  ///< runs of contacts copied into place (narrow phase)
+    static constexpr std::uint32_t copy_range = 256;      ///< runs of contacts copied into place (narrow phase)
+    static constexpr std::uint32_t early_out_range = 64;  ///< groups of W pairs given MPR's first test (narrow phase)
     void order_solver_bodies_in_space();
     void solve(T dt);
     void thin_crowded_pairs();
@@ -1450,33 +1451,43 @@ void World<T>::copy_placed_runs(std::uint32_t count) {
 // MPR's first test for W pairs at a time (early_out.hpp): a convex pair apart by more than its
 // margin becomes PairKind::apart, so its contacts end as they would after a narrow phase that
 // found nothing, without the narrow phase. It only rejects pairs the narrow phase would reject.
+// Each group of W pairs only reads the bounds and marks its own pairs, so the groups run on the
+// workers (one worker: in order on the caller, the same calls).
 template <class T>
 void World<T>::reject_apart_pairs(T dt) {
     constexpr int W = EarlyOut<T>::width;
     constexpr std::size_t kAhead = 16;  // second bodies come at random: keep a few misses in flight
-    stats_.apart_pairs = 0;
-    const auto mark = [&](std::uint32_t k, bool apart) {
-        if (!apart) return;
-        pair_work_[k].kind = PairKind::apart;
-        ++stats_.apart_pairs;
-    };
-    std::size_t j = 0;
-    for (; j + W <= early_jobs_.size(); j += W) {
-        std::uint32_t a[W], b[W];
-        T margin[W];
-        for (int l = 0; l < W; ++l) {
-            const std::size_t m = j + static_cast<std::size_t>(l);
-            if (m + kAhead < early_jobs_.size()) early_out_.prefetch(pairs_[early_jobs_[m + kAhead]].b);
-            const ProxyPair& pair = pairs_[early_jobs_[m]];
-            a[l] = pair.a, b[l] = pair.b, margin[l] = pair_margin(bodies_[pair.a], bodies_[pair.b], dt);
+    const std::size_t jobs = early_jobs_.size();
+    const std::uint32_t* job = early_jobs_.data();
+    const ProxyPair* pairs = pairs_.data();
+    PairWork* work = pair_work_.data();
+    std::atomic<std::size_t> apart_count{0};
+    const auto groups = static_cast<std::uint32_t>((jobs + W - 1) / W);
+    parallel_for(tasks_.get(), groups, early_out_range, [&](std::uint32_t begin, std::uint32_t end) {
+        std::size_t found = 0;
+        const std::size_t stop = std::min(std::size_t(end) * W, jobs);
+        std::size_t j = std::size_t(begin) * W;
+        for (; j + W <= stop; j += W) {
+            std::uint32_t a[W], b[W];
+            T margin[W];
+            for (int l = 0; l < W; ++l) {
+                const std::size_t m = j + static_cast<std::size_t>(l);
+                if (m + kAhead < jobs) early_out_.prefetch(pairs[job[m + kAhead]].b);
+                const ProxyPair& pair = pairs[job[m]];
+                a[l] = pair.a, b[l] = pair.b, margin[l] = pair_margin(bodies_[pair.a], bodies_[pair.b], dt);
+            }
+            const unsigned apart = early_out_.template apart_pairs<W>(a, b, margin);
+            for (int l = 0; l < W; ++l)
+                if ((apart >> l) & 1u) work[job[j + static_cast<std::size_t>(l)]].kind = PairKind::apart, ++found;
         }
-        const unsigned apart = early_out_.template apart_pairs<W>(a, b, margin);
-        for (int l = 0; l < W; ++l) mark(early_jobs_[j + static_cast<std::size_t>(l)], (apart >> l) & 1u);
-    }
-    for (; j < early_jobs_.size(); ++j) {
-        const ProxyPair& pair = pairs_[early_jobs_[j]];
-        mark(early_jobs_[j], early_out_.apart(pair.a, pair.b, pair_margin(bodies_[pair.a], bodies_[pair.b], dt)));
-    }
+        for (; j < stop; ++j) {  // the last few, one at a time
+            const ProxyPair& pair = pairs[job[j]];
+            if (early_out_.apart(pair.a, pair.b, pair_margin(bodies_[pair.a], bodies_[pair.b], dt)))
+                work[job[j]].kind = PairKind::apart, ++found;
+        }
+        apart_count.fetch_add(found, std::memory_order_relaxed);
+    });
+    stats_.apart_pairs = apart_count.load(std::memory_order_relaxed);
 }
 
 // A counting sort of the contacts by body slot (each contact listed under both bodies), in
