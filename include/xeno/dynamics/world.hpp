@@ -677,7 +677,7 @@ private:
     std::vector<ContactEvent<T>> events_, events_pending_;
     std::vector<std::uint32_t> event_block_start_;  ///< scratch: where each block's events begin (collect_events)
     std::vector<ContactEvent<T>> merged_events_;    ///< scratch: the events with the recorded ones merged in (sort_events)
-    std::vector<std::uint8_t> leaves_fat_box_;      ///< scratch, several workers: 1 = leaves its query leaf's box
+    std::vector<std::uint8_t> leaves_fat_box_;      ///< scratch: 1 = leaves its query leaf's box (update_query_tree)
     std::shared_ptr<const Listener> listener_;      ///< shared: a running listener outlives its replacement
     std::function<bool(BodyId, BodyId)> filter_;
     T accumulator_{};
@@ -1239,15 +1239,12 @@ void World<T>::update_bounds(T dt) {
 }
 
 // The queries' tree holds each body's current box: after the step, every body whose pose changed
-// gets its new one (a move inside the tree's fat box costs a comparison). Once the moves have
-// brought the tree to its rebuild (refresh_query_tree), it is rebuilt after the loop whatever
-// else moves, so the rest only set their leaves' boxes: the same tree without reinserting each.
-// Several workers first mark, in parallel, the bodies whose new box leaves their fat box: a
-// resting stack then costs the stepping thread a byte a body instead of each body's box (0.7 ms
-// of the 5,050-box pyramid's step). The tree is the same: the bodies not marked would have
-// stayed inside. Knowing the count of marked bodies, they skip reinsertion altogether when they
-// will bring the tree to its rebuild by the end of the loop (the same tree again: the rebuild
-// reads only the leaves).
+// gets its new one. First the bodies whose new box leaves their leaf's fat box are marked, in
+// parallel (a byte a body: a resting stack costs the stepping thread that, where it used to be
+// each body's box, 0.7 ms of the 5,050-box pyramid's step), and counted; the stepping thread
+// then moves those leaves. When they will bring the tree to its rebuild (refresh_query_tree),
+// they only take their new boxes, without reinsertion: the rebuild reads only the leaves, so the
+// tree is the same.
 template <class T>
 void World<T>::update_query_tree() {
     AabbTree<T>& tree = query_trees_[1];
@@ -1257,27 +1254,21 @@ void World<T>::update_query_tree() {
         return !(b.position_ == previous_pose_[i].position && b.orientation_ == previous_pose_[i].orientation);
     };
     const auto n = static_cast<std::uint32_t>(bodies_.size());
-    const bool marked = workers() > 1;
+    leaves_fat_box_.resize(n);
     std::atomic<std::size_t> leaving{0};
-    if (marked) {
-        leaves_fat_box_.resize(n);
-        parallel_for(tasks_.get(), n, bounds_range, [&](std::uint32_t begin, std::uint32_t end) {
-            std::size_t count = 0;
-            for (std::uint32_t i = begin; i < end; ++i) {
-                leaves_fat_box_[i] = moved(i) && tree.would_reinsert(i, bodies_[i].world_bounds()) ? 1 : 0;
-                count += leaves_fat_box_[i];
-            }
-            leaving.fetch_add(count, std::memory_order_relaxed);
-        });
-    }
-    bool rebuilding = due_for_rebuild(tree, leaving.load());
-    for (std::uint32_t i = 0; i < n; ++i) {
-        if (marked ? leaves_fat_box_[i] == 0 : !moved(i)) continue;
-        if (rebuilding) {
-            tree.move_before_rebuild(i, bodies_[i].world_bounds());
-        } else if (tree.move(i, bodies_[i].world_bounds())) {
-            rebuilding = due_for_rebuild(tree);
+    parallel_for(tasks_.get(), n, bounds_range, [&](std::uint32_t begin, std::uint32_t end) {
+        std::size_t count = 0;
+        for (std::uint32_t i = begin; i < end; ++i) {
+            leaves_fat_box_[i] = moved(i) && tree.would_reinsert(i, bodies_[i].world_bounds()) ? 1 : 0;
+            count += leaves_fat_box_[i];
         }
+        leaving.fetch_add(count, std::memory_order_relaxed);
+    });
+    const bool rebuilding = due_for_rebuild(tree, leaving.load());
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (leaves_fat_box_[i] == 0) continue;
+        if (rebuilding) tree.move_before_rebuild(i, bodies_[i].world_bounds());
+        else tree.move(i, bodies_[i].world_bounds());
     }
     refresh_query_tree();
 }
