@@ -105,16 +105,19 @@ SupportFace<T> support_feature(const ShapeRef<T>& shape, const Vec3<T>& d, T tau
 /// Moves the points of `poly` (any count) to the part inside the prism over the convex polygon
 /// `ref` (3+ vertices) along n.
 template <class T>
-ClipPolygon<T> clip_to_prism(ClipPolygon<T> poly, const SupportFace<T>& ref, const Vec3<T>& n) {
+ClipPolygon<T> clip_to_prism(const ClipPolygon<T>& poly, const SupportFace<T>& ref, const Vec3<T>& n) {
     Vec3<T> area{};
     for (int i = 0; i < ref.count; ++i) area += cross(ref[i], ref[(i + 1) % ref.count]);
     const T orient = dot(area, n) >= T(0) ? T(1) : T(-1);
-    for (int i = 0; i < ref.count && poly.count > 0; ++i) {
+    ClipPolygon<T> polygons[2] = {poly, {}};  // clipped back and forth (clip_by_plane)
+    int current = 0;
+    for (int i = 0; i < ref.count && polygons[current].count > 0; ++i) {
         const Vec3<T>& r0 = ref[i];
         const Vec3<T>& r1 = ref[(i + 1) % ref.count];
-        poly = clip_by_plane(poly, r0, cross(r1 - r0, n) * orient);
+        clip_by_plane(polygons[current], r0, cross(r1 - r0, n) * orient, polygons[1 - current]);
+        current = 1 - current;
     }
-    return poly;
+    return polygons[current];
 }
 
 template <class T>
