@@ -74,11 +74,27 @@ struct Spread {
 };
 constexpr Spread spreads[] = {{"1 worker", 1, false}, {"2 workers", 2, false}, {"3 workers", 3, false}, {"shuffled", 3, true}};
 
-/// Steps `world` as `spread` says; `shuffled` (made with spread.workers) must outlive its steps.
-template <class T>
-void use_spread(World<T>& world, const Spread& spread, test::ShuffledTasks& shuffled) {
+/// A world with the default settings, made by `build` and stepping as `spread` says, handed to
+/// `steps`; returns what `steps` returns (the shuffled job system lives through the call).
+template <class T, class Build, class Steps>
+auto on_spread(const Spread& spread, const Build& build, const Steps& steps) {
+    World<T> world;
+    build(world);
+    test::ShuffledTasks shuffled(spread.workers);
     if (spread.shuffled) world.set_task_system(&shuffled);
     else world.set_workers(spread.workers);
+    return steps(world);
+}
+
+/// Checks that `record(spread)` gives on every spread what it gives on one worker.
+template <class Record>
+void check_same_on_every_spread(const Record& record) {
+    const auto one = record(spreads[0]);
+    for (const Spread& spread : spreads) {
+        const std::string name = spread.name;
+        CAPTURE(name);
+        CHECK(record(spread) == one);
+    }
 }
 
 /// Every event field that is a number, as bits, in order.
@@ -101,17 +117,17 @@ std::uint64_t events_hash(const World<T>& world) {
 /// The state and event hashes after every step of `scene` with the default settings.
 template <class T>
 std::vector<std::uint64_t> run(const std::string& scene, int steps, const Spread& spread) {
-    World<T> world;
-    scenes::build<T>(scene, world);
-    test::ShuffledTasks shuffled(spread.workers);
-    use_spread(world, spread, shuffled);
-    std::vector<std::uint64_t> hashes;
-    for (int i = 0; i < steps; ++i) {
-        world.step(world.settings().fixed_time_step);
-        hashes.push_back(test::state_hash(world));
-        hashes.push_back(events_hash(world));
-    }
-    return hashes;
+    return on_spread<T>(
+        spread, [&](World<T>& world) { scenes::build<T>(scene, world); },
+        [&](World<T>& world) {
+            std::vector<std::uint64_t> hashes;
+            for (int i = 0; i < steps; ++i) {
+                world.step(world.settings().fixed_time_step);
+                hashes.push_back(test::state_hash(world));
+                hashes.push_back(events_hash(world));
+            }
+            return hashes;
+        });
 }
 
 }  // namespace
@@ -120,12 +136,9 @@ TEST_CASE_TEMPLATE("every worker count and a shuffled job system give one worker
     // Shapes of every kind, compounds (collided on the stepping thread), joints with contacts, a
     // pile that falls asleep (sleeping on: the defaults), and mesh pairs (collided on the workers).
     for (const char* scene : {"mixed-pile", "compound-stack", "ragdoll", "sleeping-pile", "terrain"}) {
-        const std::vector<std::uint64_t> one = run<T>(scene, 90, spreads[0]);
-        for (const Spread& spread : spreads) {
-            CAPTURE(scene);
-            CAPTURE(spread.name);
-            CHECK(run<T>(scene, 90, spread) == one);
-        }
+        const std::string name = scene;
+        CAPTURE(name);
+        check_same_on_every_spread([&](const Spread& spread) { return run<T>(scene, 90, spread); });
     }
 }
 
@@ -178,11 +191,7 @@ TEST_CASE_TEMPLATE("300 boxes spread over several sweep columns land on any work
             world.create_body(box, def);
         }
     };
-    const auto hashes = [&](const Spread& spread) {
-        World<T> world;
-        build(world);
-        test::ShuffledTasks shuffled(spread.workers);
-        use_spread(world, spread, shuffled);
+    const auto steps = [](World<T>& world) {
         std::vector<std::uint64_t> out;
         std::size_t apart = 0;
         for (int i = 0; i < 20; ++i) {
@@ -206,11 +215,7 @@ TEST_CASE_TEMPLATE("300 boxes spread over several sweep columns land on any work
         sweep.find_pairs(boxes, pairs);
         REQUIRE(sweep.columns() >= 2);
     }
-    const std::vector<std::uint64_t> one = hashes(spreads[0]);
-    for (const Spread& spread : spreads) {
-        CAPTURE(spread.name);
-        CHECK(hashes(spread) == one);
-    }
+    check_same_on_every_spread([&](const Spread& spread) { return on_spread<T>(spread, build, steps); });
 }
 
 TEST_CASE_TEMPLATE("over 512 contacts, the events collected on several workers are one worker's, ended ones pending included", T,
@@ -233,11 +238,7 @@ TEST_CASE_TEMPLATE("over 512 contacts, the events collected on several workers a
             world.create_body(box, def);
         }
     };
-    const auto events = [&](const Spread& spread) {
-        World<T> world;
-        build(world);
-        test::ShuffledTasks shuffled(spread.workers);
-        use_spread(world, spread, shuffled);
+    const auto steps = [](World<T>& world) {
         std::vector<std::uint64_t> out;
         std::size_t most = 0;
         for (int i = 0; i < 24; ++i) {
@@ -250,11 +251,7 @@ TEST_CASE_TEMPLATE("over 512 contacts, the events collected on several workers a
         CHECK(most >= 540);  // more than two blocks of contacts: the parallel collection was used
         return out;
     };
-    const std::vector<std::uint64_t> one = events(spreads[0]);
-    for (const Spread& spread : spreads) {
-        CAPTURE(spread.name);
-        CHECK(events(spread) == one);
-    }
+    check_same_on_every_spread([&](const Spread& spread) { return on_spread<T>(spread, build, steps); });
 }
 
 TEST_CASE_TEMPLATE("after steps on several workers the query tree answers as after one worker's", T, float, double) {
@@ -265,8 +262,7 @@ TEST_CASE_TEMPLATE("after steps on several workers the query tree answers as aft
     // tell. And every body must be found by a query of the lowest corner of its box (brute force:
     // a falling body leaves its old leaf through the bottom, so a leaf given its new box without
     // its ancestors refitted or the tree rebuilt would hide it there).
-    const auto answers = [](const Spread& spread) {
-        World<T> world;
+    const auto build = [](World<T>& world) {
         scenes::add_ground(world, T(30));
         scenes::Random rng(11);
         const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
@@ -278,8 +274,8 @@ TEST_CASE_TEMPLATE("after steps on several workers the query tree answers as aft
             def.linear_velocity = {T(0), T(-0.5) * T(i % 7), T(0)};
             world.create_body(box, def);
         }
-        test::ShuffledTasks shuffled(spread.workers);
-        use_spread(world, spread, shuffled);
+    };
+    const auto steps = [](World<T>& world) {
         std::vector<std::int64_t> out;
         int hidden = 0;
         for (int step = 0; step < 25; ++step) {
@@ -300,16 +296,10 @@ TEST_CASE_TEMPLATE("after steps on several workers the query tree answers as aft
                 out.push_back(any ? std::int64_t(any->body.index) : -2);
             }
         }
-        const std::string name = spread.name;
-        CAPTURE(name);
         CHECK(hidden == 0);
         return out;
     };
-    const std::vector<std::int64_t> one = answers(spreads[0]);
-    for (const Spread& spread : spreads) {
-        CAPTURE(spread.name);
-        CHECK(answers(spread) == one);
-    }
+    check_same_on_every_spread([&](const Spread& spread) { return on_spread<T>(spread, build, steps); });
 }
 
 TEST_CASE_TEMPLATE("300 boxes sliding at 5 m/s on two workers stop within 2 % of v^2/(2 mu g)", T, float, double) {
