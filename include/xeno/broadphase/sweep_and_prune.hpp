@@ -68,6 +68,19 @@ private:
     /// sweeping, more than handing out a range costs.
     static constexpr std::uint32_t kColumnsPerRange = 1;
 
+    /// The spread of the boxes' centres (find_pairs, step 1): the sweep axis is the widest.
+    struct Spread {
+        std::size_t live = 0;  ///< non-empty boxes
+        int axis = 0;
+        Vec3<T> low, high;  ///< range of the centres
+        int u() const { return (axis + 1) % 3; }
+        int v() const { return (axis + 2) % 3; }
+    };
+    static Spread centre_spread(const std::vector<Aabb<T>>& boxes);
+    T choose_columns(const std::vector<Aabb<T>>& boxes, const Spread& spread);
+    bool refresh_order(const std::vector<Aabb<T>>& boxes, int axis);
+    const Item* fill_columns(const Vec3<T>& low, T inv_cell);
+    void sweep_columns(const Item* sweep, std::vector<ProxyPair>& pairs, TaskSystem* tasks);
     std::size_t sweep_column(const Item* sweep, std::size_t column, std::vector<ProxyPair>& out, std::size_t used) const;
 
     std::vector<Item> order_;                     ///< every proxy, sorted by (min, proxy)
@@ -89,66 +102,84 @@ private:
 template <class T>
 void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector<ProxyPair>& pairs, TaskSystem* tasks) {
     pairs.clear();
-    const std::size_t n = boxes.size();
-    constexpr T inf = ScalarTraits<T>::infinity;
-    // 1. Spread of the centres (variance and range over non-empty boxes). Two passes, the mean
-    //    summed from c / live: no sum of squares that overflows to inf - inf for centres far out
-    //    (a variance may still be inf, which picks that axis, but never NaN).
-    Vec3<T> mean{};
-    Vec3<T> low = Vec3<T>::one() * inf, high = -low;
-    std::size_t live = 0;
-    for (const Aabb<T>& b : boxes) live += b.empty() ? 0 : 1;
-    int axis = 0;
-    if (live > 0) {
-        const T inv = T(1) / static_cast<T>(live);
-        for (const Aabb<T>& b : boxes)
-            if (!b.empty()) mean += b.center() * inv;
-        Vec3<T> variance{};
-        for (const Aabb<T>& b : boxes) {
-            if (b.empty()) continue;
-            const Vec3<T> c = b.center();
-            variance += hadamard(c - mean, c - mean) * inv;
-            low = min(low, c);
-            high = max(high, c);
-        }
-        axis = max_axis(variance);
+    const Spread spread = centre_spread(boxes);
+    const T inv_cell = choose_columns(boxes, spread);
+    if (refresh_order(boxes, spread.axis)) {  // every box as last time: so are the pairs
+        pairs = last_pairs_;
+        return;
     }
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    // The column grid: cells at least four typical box sizes wide (the median cross-axis size of
-    // up to 1024 boxes spread over the vector: a few huge boxes do not inflate it), about 64
-    // boxes per column or more, at most kMaxCells per axis; one cell when nothing is left to cut.
-    // (Four sizes measured best: narrower cells copy more boxes, wider ones compare more.)
-    cells_u_ = cells_v_ = 1;
-    T cell = T(0);
-    if (live >= 256) {
-        sizes_.clear();
-        for (std::size_t i = 0, stride = std::max<std::size_t>(1, n / 1024); i < n; i += stride)
-            if (!boxes[i].empty())
-                sizes_.push_back(std::max(boxes[i].max[u] - boxes[i].min[u], boxes[i].max[v] - boxes[i].min[v]));
-        const auto middle = sizes_.begin() + static_cast<std::ptrdiff_t>(sizes_.size() / 2);
-        std::nth_element(sizes_.begin(), middle, sizes_.end());
-        const T size = sizes_.empty() ? T(0) : *middle;
-        const T span_u = high[u] - low[u], span_v = high[v] - low[v];
-        const T max_columns = static_cast<T>(live / 64);
-        cell = std::max(T(4) * size, std::sqrt(span_u * span_v / max_columns));
-        auto cells_along = [&](T span) {
-            const T count = span / cell;
-            return count >= T(kMaxCells) ? kMaxCells : count > T(1) ? static_cast<std::size_t>(count) + 1 : std::size_t(1);
-        };
-        if (std::isfinite(cell) && cell > T(0)) {
-            cells_u_ = cells_along(span_u);
-            cells_v_ = cells_along(span_v);
-        }
-    }
-    const std::size_t columns = cells_u_ * cells_v_;
-    const T inv_cell = columns > 1 ? T(1) / cell : T(0);
-    auto cell_of = [inv_cell](T x, T lo, std::size_t cells) {
-        const T f = (x - lo) * inv_cell;  // clamped in floating point first: no overflow, NaN -> 0
-        return static_cast<std::uint16_t>(f >= T(cells - 1) ? T(cells - 1) : f > T(0) ? std::floor(f) : T(0));
-    };
+    const Item* sweep = fill_columns(spread.low, inv_cell);
+    sweep_columns(sweep, pairs, tasks);
+    detail::sort_pairs_by_first(pairs, boxes.size(), counts_, scratch_);
+    last_pairs_ = pairs;
+    last_valid_ = true;
+}
 
-    // 2. Refresh the boxes in the previous order (new proxies appended; the one pass that reads
-    //    `boxes` out of order), then insertion sort.
+/// Step 1: the spread of the non-empty boxes' centres, variance and range. Two passes, the mean
+/// summed from c / live: no sum of squares that overflows to inf - inf for centres far out (a
+/// variance may still be inf, which picks that axis, but never NaN).
+template <class T>
+typename SweepAndPrune<T>::Spread SweepAndPrune<T>::centre_spread(const std::vector<Aabb<T>>& boxes) {
+    constexpr T inf = ScalarTraits<T>::infinity;
+    Spread s;
+    s.low = Vec3<T>::one() * inf, s.high = -s.low;
+    for (const Aabb<T>& b : boxes) s.live += b.empty() ? 0 : 1;
+    if (s.live == 0) return s;
+    const T inv = T(1) / static_cast<T>(s.live);
+    Vec3<T> mean{};
+    for (const Aabb<T>& b : boxes)
+        if (!b.empty()) mean += b.center() * inv;
+    Vec3<T> variance{};
+    for (const Aabb<T>& b : boxes) {
+        if (b.empty()) continue;
+        const Vec3<T> c = b.center();
+        variance += hadamard(c - mean, c - mean) * inv;
+        s.low = min(s.low, c);
+        s.high = max(s.high, c);
+    }
+    s.axis = max_axis(variance);
+    return s;
+}
+
+/// The column grid on the cross axes (sets cells_u_ and cells_v_; returns 1 / the cell's side,
+/// 0 for one column): cells at least four typical box sizes wide (the median cross-axis size of
+/// up to 1024 boxes spread over the vector: a few huge boxes do not inflate it), about 64 boxes
+/// per column or more, at most kMaxCells per axis; one cell when nothing is left to cut. (Four
+/// sizes measured best: narrower cells copy more boxes, wider ones compare more.)
+template <class T>
+T SweepAndPrune<T>::choose_columns(const std::vector<Aabb<T>>& boxes, const Spread& spread) {
+    cells_u_ = cells_v_ = 1;
+    if (spread.live < 256) return T(0);
+    const int u = spread.u(), v = spread.v();
+    const std::size_t n = boxes.size();
+    sizes_.clear();
+    for (std::size_t i = 0, stride = std::max<std::size_t>(1, n / 1024); i < n; i += stride)
+        if (!boxes[i].empty()) sizes_.push_back(std::max(boxes[i].max[u] - boxes[i].min[u], boxes[i].max[v] - boxes[i].min[v]));
+    const auto middle = sizes_.begin() + static_cast<std::ptrdiff_t>(sizes_.size() / 2);
+    std::nth_element(sizes_.begin(), middle, sizes_.end());
+    const T size = sizes_.empty() ? T(0) : *middle;
+    const T span_u = spread.high[u] - spread.low[u], span_v = spread.high[v] - spread.low[v];
+    const T max_columns = static_cast<T>(spread.live / 64);
+    const T cell = std::max(T(4) * size, std::sqrt(span_u * span_v / max_columns));
+    const auto cells_along = [&](T span) {
+        const T count = span / cell;
+        return count >= T(kMaxCells) ? kMaxCells : count > T(1) ? static_cast<std::size_t>(count) + 1 : std::size_t(1);
+    };
+    if (!(std::isfinite(cell) && cell > T(0))) return T(0);
+    cells_u_ = cells_along(span_u);
+    cells_v_ = cells_along(span_v);
+    return cells_u_ * cells_v_ > 1 ? T(1) / cell : T(0);
+}
+
+/// Step 2: refreshes the boxes in the previous order (new proxies appended; the one pass that
+/// reads `boxes` out of order), then sorts. Returns true, leaving the order as it was, when every
+/// box is as at the last call. Insertion sort while the order is nearly right; past a budget of
+/// moves (a cold start, or a scene that changed a lot) a full sort is cheaper.
+template <class T>
+bool SweepAndPrune<T>::refresh_order(const std::vector<Aabb<T>>& boxes, int axis) {
+    constexpr T inf = ScalarTraits<T>::infinity;
+    const std::size_t n = boxes.size();
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     bool same = last_valid_ && axis == axis_ && order_.size() == n;
     if (axis != axis_ || order_.size() > n) {
         order_.clear();
@@ -171,12 +202,7 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
                fresh.min_v == it.min_v && fresh.max_v == it.max_v;
         it = fresh;
     }
-    if (same) {  // every box as last time: so are the pairs
-        pairs = last_pairs_;
-        return;
-    }
-    // Insertion sort while the order is nearly right; past a budget of moves (a cold start, or a
-    // scene that changed a lot) a full sort is cheaper.
+    if (same) return true;
     const auto by_min = [](const Item& x, const Item& y) { return x.min < y.min || (x.min == y.min && x.proxy < y.proxy); };
     std::size_t moves = 0;
     const std::size_t budget = 8 * order_.size() + 64;
@@ -189,60 +215,71 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
         moves += i - j;
     }
     if (moves > budget) std::sort(order_.begin(), order_.end(), by_min);
+    return false;
+}
 
-    // 3. With several columns, copy each box, in sweep order, into every column it touches
-    //    (a counting sort: count, prefix sums, place), so every column stays sorted.
-    const Item* sweep = order_.data();
+/// Step 3: with several columns, copies each box, in sweep order, into every column it touches
+/// (a counting sort: count, prefix sums, place), so every column stays sorted. Returns the boxes
+/// to sweep: items_ column after column, or order_ itself as the one column.
+template <class T>
+const typename SweepAndPrune<T>::Item* SweepAndPrune<T>::fill_columns(const Vec3<T>& low, T inv_cell) {
+    const std::size_t columns = cells_u_ * cells_v_;
     start_.assign(columns + 1, 0);
-    if (columns > 1) {
-        last_u_.resize(order_.size());
-        last_v_.resize(order_.size());
-        for (std::size_t k = 0; k < order_.size(); ++k) {
-            Item& it = order_[k];
-            if (it.empty()) continue;
-            it.first_u = cell_of(it.min_u, low[u], cells_u_);
-            it.first_v = cell_of(it.min_v, low[v], cells_v_);
-            last_u_[k] = cell_of(it.max_u, low[u], cells_u_);
-            last_v_[k] = cell_of(it.max_v, low[v], cells_v_);
-            for (std::size_t cu = it.first_u; cu <= last_u_[k]; ++cu)
-                for (std::size_t cv = it.first_v; cv <= last_v_[k]; ++cv) ++start_[cu * cells_v_ + cv + 1];
-        }
-        for (std::size_t k = 0; k < columns; ++k) start_[k + 1] += start_[k];
-        items_.resize(start_[columns]);
-        cursor_.assign(start_.begin(), start_.end() - 1);
-        for (std::size_t k = 0; k < order_.size(); ++k) {
-            const Item& it = order_[k];
-            if (it.empty()) continue;
-            for (std::size_t cu = it.first_u; cu <= last_u_[k]; ++cu)
-                for (std::size_t cv = it.first_v; cv <= last_v_[k]; ++cv) items_[cursor_[cu * cells_v_ + cv]++] = it;
-        }
-        sweep = items_.data();
-    } else {
+    if (columns == 1) {
         for (Item& it : order_) it.first_u = it.first_v = 0;
         start_[1] = static_cast<std::uint32_t>(order_.size());  // empty boxes at the end pair with nothing
+        return order_.data();
     }
+    const int u = (axis_ + 1) % 3, v = (axis_ + 2) % 3;
+    const auto cell_of = [inv_cell](T x, T lo, std::size_t cells) {
+        const T f = (x - lo) * inv_cell;  // clamped in floating point first: no overflow, NaN -> 0
+        return static_cast<std::uint16_t>(f >= T(cells - 1) ? T(cells - 1) : f > T(0) ? std::floor(f) : T(0));
+    };
+    last_u_.resize(order_.size());
+    last_v_.resize(order_.size());
+    for (std::size_t k = 0; k < order_.size(); ++k) {
+        Item& it = order_[k];
+        if (it.empty()) continue;
+        it.first_u = cell_of(it.min_u, low[u], cells_u_);
+        it.first_v = cell_of(it.min_v, low[v], cells_v_);
+        last_u_[k] = cell_of(it.max_u, low[u], cells_u_);
+        last_v_[k] = cell_of(it.max_v, low[v], cells_v_);
+        for (std::size_t cu = it.first_u; cu <= last_u_[k]; ++cu)
+            for (std::size_t cv = it.first_v; cv <= last_v_[k]; ++cv) ++start_[cu * cells_v_ + cv + 1];
+    }
+    for (std::size_t k = 0; k < columns; ++k) start_[k + 1] += start_[k];
+    items_.resize(start_[columns]);
+    cursor_.assign(start_.begin(), start_.end() - 1);
+    for (std::size_t k = 0; k < order_.size(); ++k) {
+        const Item& it = order_[k];
+        if (it.empty()) continue;
+        for (std::size_t cu = it.first_u; cu <= last_u_[k]; ++cu)
+            for (std::size_t cv = it.first_v; cv <= last_v_[k]; ++cv) items_[cursor_[cu * cells_v_ + cv]++] = it;
+    }
+    return items_.data();
+}
 
-    // 4. The sweep, column by column (on several workers each column into its own list, joined
-    //    in column order: the pairs come out as one thread lists them).
-    if (tasks != nullptr && tasks->workers() > 1 && columns > kColumnsPerRange) {
-        column_pairs_.resize(columns);
-        column_used_.resize(columns);
-        parallel_for(tasks, static_cast<std::uint32_t>(columns), kColumnsPerRange, [&](std::uint32_t begin, std::uint32_t end) {
-            for (std::uint32_t column = begin; column < end; ++column)
-                column_used_[column] = sweep_column(sweep, column, column_pairs_[column], 0);
-        });
-        for (std::size_t column = 0; column < columns; ++column) {
-            const auto from = column_pairs_[column].begin();
-            pairs.insert(pairs.end(), from, from + static_cast<std::ptrdiff_t>(column_used_[column]));
-        }
-    } else {
+/// Step 4: the sweep, column by column; on several workers each column into its own list, the
+/// lists joined in column order, so the pairs come out as one thread lists them.
+template <class T>
+void SweepAndPrune<T>::sweep_columns(const Item* sweep, std::vector<ProxyPair>& pairs, TaskSystem* tasks) {
+    const std::size_t columns = cells_u_ * cells_v_;
+    if (tasks == nullptr || tasks->workers() <= 1 || columns <= kColumnsPerRange) {
         std::size_t used = 0;
         for (std::size_t column = 0; column < columns; ++column) used = sweep_column(sweep, column, pairs, used);
         pairs.resize(used);
+        return;
     }
-    detail::sort_pairs_by_first(pairs, n, counts_, scratch_);
-    last_pairs_ = pairs;
-    last_valid_ = true;
+    column_pairs_.resize(columns);
+    column_used_.resize(columns);
+    parallel_for(tasks, static_cast<std::uint32_t>(columns), kColumnsPerRange, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t column = begin; column < end; ++column)
+            column_used_[column] = sweep_column(sweep, column, column_pairs_[column], 0);
+    });
+    for (std::size_t column = 0; column < columns; ++column) {
+        const auto from = column_pairs_[column].begin();
+        pairs.insert(pairs.end(), from, from + static_cast<std::ptrdiff_t>(column_used_[column]));
+    }
 }
 
 /// Writes the pairs of one column (step 4 of find_pairs) into `out` from index `used` on and
