@@ -206,6 +206,15 @@ struct SnapshotAccess {
     static void check_compound(const Compound<T>& c);
     static void check_body(const World<T>& w, std::uint32_t slot);
     static void check_world(const World<T>& w);
+    static void check_body_slots(const World<T>& w);
+    static void check_contact(const World<T>& w, std::size_t k);
+    static void check_joints(const World<T>& w);
+    static void check_joint(const World<T>& w, std::size_t k);
+    static void check_pending_events(const World<T>& w);
+    static bool linear_ok(const World<T>& w, T impulse, std::uint32_t a, std::uint32_t b);
+    static bool angular_ok(const World<T>& w, T impulse, std::uint32_t a, std::uint32_t b);
+    static T magnitude(const Vec3<T>& v);
+    static bool living(const World<T>& w, BodyId id);
 
     static std::vector<std::uint8_t> save(const World<T>& world) {
         // Meshes and heightfields are not in the format yet (docs/meshes.md, "Limits"): refuse
@@ -480,31 +489,48 @@ void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
         bad("a body's previous pose is not finite with a unit orientation; body slot");
 }
 
+// Warm-start impulses are caches of the solver: each must give the bodies it acts on a finite
+// velocity change (m/s at their bounding radius, or rad/s). Within max_size was asked until
+// 0.9.1, but a step does not keep to it: a box welded with an anchor 1e5 m out, or a distance
+// joint anchored 1e20 m out on a light body, left contact and joint impulses beyond it, and the
+// world's own snapshot did not restore. Beyond max_size the next step is what stepping the
+// original would be: its caps and its last defence (World::discard_overflowed_solve) hold.
+template <class T>
+bool SnapshotAccess<T>::linear_ok(const World<T>& w, T impulse, std::uint32_t a, std::uint32_t b) {
+    const auto reach = [](const Body<T>& body) { return detail::speed_per_impulse(body, detail::spin_per_impulse(body)); };
+    return std::abs(impulse) * (reach(w.bodies_[a]) + reach(w.bodies_[b])) <= ScalarTraits<T>::max;
+}
+template <class T>
+bool SnapshotAccess<T>::angular_ok(const World<T>& w, T impulse, std::uint32_t a, std::uint32_t b) {
+    return std::abs(impulse) * (detail::spin_per_impulse(w.bodies_[a]) + detail::spin_per_impulse(w.bodies_[b])) <=
+           ScalarTraits<T>::max;
+}
+/// |v| without squaring past the range (1e20 in float).
+template <class T>
+T SnapshotAccess<T>::magnitude(const Vec3<T>& v) {
+    const T largest = max_component(abs(v));
+    return largest > T(0) ? largest * length(v / largest) : T(0);
+}
+template <class T>
+bool SnapshotAccess<T>::living(const World<T>& w, BodyId id) {
+    return id.index < w.bodies_.size() && w.bodies_[id.index].alive_ && w.bodies_[id.index].generation_ == id.generation;
+}
+
 template <class T>
 void SnapshotAccess<T>::check_world(const World<T>& w) {
-    // Warm-start impulses are caches of the solver: each must give the bodies it acts on a finite
-    // velocity change (m/s at their bounding radius, or rad/s). Within max_size was asked until
-    // 0.9.1, but a step does not keep to it: a box welded with an anchor 1e5 m out, or a distance joint
-    // anchored 1e20 m out on a light body, left contact and joint impulses beyond it, and the
-    // world's own snapshot did not restore. Beyond max_size the next step is what stepping the
-    // original would be: its caps and its last defence (World::discard_overflowed_solve) hold.
-    const T most = ScalarTraits<T>::max_size;
-    const T finite = ScalarTraits<T>::max;
-    const auto magnitude = [](const Vec3<T>& v) {  // |v| without squaring past the range (1e20 in float)
-        const T largest = max_component(abs(v));
-        return largest > T(0) ? largest * length(v / largest) : T(0);
-    };
-    const auto linear_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) {
-        const auto reach = [](const Body<T>& body) { return detail::speed_per_impulse(body, detail::spin_per_impulse(body)); };
-        return std::abs(impulse) * (reach(w.bodies_[a]) + reach(w.bodies_[b])) <= finite;
-    };
-    const auto angular_ok = [&](T impulse, std::uint32_t a, std::uint32_t b) {
-        return std::abs(impulse) * (detail::spin_per_impulse(w.bodies_[a]) + detail::spin_per_impulse(w.bodies_[b])) <= finite;
-    };
+    check_body_slots(w);
+    for (std::size_t k = 0; k < w.contacts_.size(); ++k) check_contact(w, k);
+    check_joints(w);
+    check_pending_events(w);
+}
+
+/// The body tables and the free slots: exactly the dead slots, each once (create_body takes them
+/// without looking); every living body checked, every dead slot's box empty.
+template <class T>
+void SnapshotAccess<T>::check_body_slots(const World<T>& w) {
     const std::size_t n = w.bodies_.size();
     if (w.bounds_.size() != n || w.previous_pose_.size() != n) detail::report_corrupt("inconsistent body tables; bodies", n);
     if (n >= BodyId::invalid_index) detail::report_corrupt("too many body slots", n);
-    // Free slots: exactly the dead slots, each once (create_body takes them without looking).
     std::vector<std::uint8_t> listed(n, 0);
     for (const std::uint32_t f : w.free_slots_) {
         if (f >= n) detail::report_corrupt("a free slot is out of range; slot", f);
@@ -522,97 +548,65 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
                 detail::report_corrupt("a dead slot has a broad-phase box; slot", i);
         }
     }
-    const auto living = [&](BodyId id) {
-        return id.index < n && w.bodies_[id.index].alive_ && w.bodies_[id.index].generation_ == id.generation;
-    };
-    // Contacts: between living bodies, a < b, sorted by (a, b, child a, child b) without repeats
-    // (the narrow phase merges them with the sorted broad-phase pairs), 0 … 4 finite points.
-    for (std::size_t k = 0; k < w.contacts_.size(); ++k) {
-        const Contact<T>& c = w.contacts_[k];
-        if (!detail::raw_bool_ok(c.touching) || !detail::raw_bool_ok(c.was_touching) || !detail::raw_bool_ok(c.sensor))
-            detail::report_corrupt("a contact's bool byte is neither 0 nor 1; contact", k);
-        if (!living(c.a) || !living(c.b) || !(c.a.index < c.b.index))
-            detail::report_corrupt("a contact does not join two living bodies a < b; contact", k);
-        if (!w.bodies_[c.a.index].enabled_ || !w.bodies_[c.b.index].enabled_)
-            detail::report_corrupt("a contact has a disabled body; contact", k);
-        if (c.child_a >= w.bodies_[c.a.index].child_count() || c.child_b >= w.bodies_[c.b.index].child_count())
-            detail::report_corrupt("a contact's part index is out of range; contact", k);
-        if (k > 0) {
-            const Contact<T>& p = w.contacts_[k - 1];
-            const auto key = [](const Contact<T>& x) {
-                return std::array<std::uint32_t, 4>{x.a.index, x.b.index, x.child_a, x.child_b};
-            };
-            if (!(key(p) < key(c))) detail::report_corrupt("contacts are not sorted by body pair and part; contact", k);
-        }
-        const Manifold<T>& m = c.manifold;
-        if (m.count < 0 || m.count > Manifold<T>::capacity)
-            detail::report_corrupt("a manifold's point count is not 0 … 4; contact", k);
-        bool ok = is_finite(m.normal) && (m.count == 0 || detail::unit_vector(m.normal)) && is_finite(m.friction_impulse) &&
-                  std::isfinite(m.twist_impulse) && std::isfinite(c.friction) && c.friction >= T(0) && c.restitution >= T(0) &&
-                  c.restitution <= T(1);
-        for (int i = 0; ok && i < m.count; ++i) {
-            const ContactPoint<T>& p = m.points[static_cast<std::size_t>(i)];
-            ok = is_finite(p.local_a) && is_finite(p.local_b) && std::isfinite(p.depth) && std::isfinite(p.normal_impulse) &&
-                 p.normal_impulse >= T(0) && std::isfinite(p.max_normal_impulse) && p.max_normal_impulse >= T(0) &&
-                 std::isfinite(p.step_impulse) && p.step_impulse >= T(0) && linear_ok(p.normal_impulse, c.a.index, c.b.index) &&
-                 linear_ok(p.max_normal_impulse, c.a.index, c.b.index) && linear_ok(p.step_impulse, c.a.index, c.b.index);
-        }
-        ok = ok && linear_ok(magnitude(m.friction_impulse), c.a.index, c.b.index) &&
-             angular_ok(m.twist_impulse, c.a.index, c.b.index);
-        // The pose the manifold was made at (World::reuse_contact): a wrong one only decides
-        // whether the next step re-measures the points or collides the shapes again.
-        ok = ok && is_finite(c.made_offset) && detail::unit_quat(c.made_turn) && is_finite(c.made_normal) &&
-             (m.count == 0 || detail::unit_vector(c.made_normal));
-        if (!ok) detail::report_corrupt("a contact's normal, points, impulses or material are out of range; contact", k);
-        // The twist lever kept under its key (World::twist_lever) must be the one the points
-        // give: the next step uses it without integrating the patch again.
-        std::array<Vec3<T>, 4> anchors{};
-        for (std::size_t i = 0; i < static_cast<std::size_t>(m.count); ++i) anchors[i] = m.points[i].local_a;
-        if (!(std::isfinite(c.twist_lever) && c.twist_lever >= T(0)) ||
-            (c.twist_lever_key == detail::patch_key(anchors, m.count) &&
-             !(c.twist_lever == detail::patch_twist_lever(anchors, m.count))))
-            detail::report_corrupt("a contact's twist lever is not the one its points give; contact", k);
+}
+
+/// Contact k: between living bodies, a < b, sorted by (a, b, child a, child b) without repeats
+/// (the narrow phase merges them with the sorted broad-phase pairs), 0 … 4 finite points.
+template <class T>
+void SnapshotAccess<T>::check_contact(const World<T>& w, std::size_t k) {
+    const Contact<T>& c = w.contacts_[k];
+    if (!detail::raw_bool_ok(c.touching) || !detail::raw_bool_ok(c.was_touching) || !detail::raw_bool_ok(c.sensor))
+        detail::report_corrupt("a contact's bool byte is neither 0 nor 1; contact", k);
+    if (!living(w, c.a) || !living(w, c.b) || !(c.a.index < c.b.index))
+        detail::report_corrupt("a contact does not join two living bodies a < b; contact", k);
+    if (!w.bodies_[c.a.index].enabled_ || !w.bodies_[c.b.index].enabled_)
+        detail::report_corrupt("a contact has a disabled body; contact", k);
+    if (c.child_a >= w.bodies_[c.a.index].child_count() || c.child_b >= w.bodies_[c.b.index].child_count())
+        detail::report_corrupt("a contact's part index is out of range; contact", k);
+    if (k > 0) {
+        const Contact<T>& p = w.contacts_[k - 1];
+        const auto key = [](const Contact<T>& x) {
+            return std::array<std::uint32_t, 4>{x.a.index, x.b.index, x.child_a, x.child_b};
+        };
+        if (!(key(p) < key(c))) detail::report_corrupt("contacts are not sorted by body pair and part; contact", k);
     }
-    // Joints: types, bools, living distinct bodies, finite frames; free joints = dead joints.
+    const Manifold<T>& m = c.manifold;
+    if (m.count < 0 || m.count > Manifold<T>::capacity)
+        detail::report_corrupt("a manifold's point count is not 0 … 4; contact", k);
+    const std::uint32_t a = c.a.index, b = c.b.index;
+    bool ok = is_finite(m.normal) && (m.count == 0 || detail::unit_vector(m.normal)) && is_finite(m.friction_impulse) &&
+              std::isfinite(m.twist_impulse) && std::isfinite(c.friction) && c.friction >= T(0) && c.restitution >= T(0) &&
+              c.restitution <= T(1);
+    for (int i = 0; ok && i < m.count; ++i) {
+        const ContactPoint<T>& p = m.points[static_cast<std::size_t>(i)];
+        ok = is_finite(p.local_a) && is_finite(p.local_b) && std::isfinite(p.depth) && std::isfinite(p.normal_impulse) &&
+             p.normal_impulse >= T(0) && std::isfinite(p.max_normal_impulse) && p.max_normal_impulse >= T(0) &&
+             std::isfinite(p.step_impulse) && p.step_impulse >= T(0) && linear_ok(w, p.normal_impulse, a, b) &&
+             linear_ok(w, p.max_normal_impulse, a, b) && linear_ok(w, p.step_impulse, a, b);
+    }
+    ok = ok && linear_ok(w, magnitude(m.friction_impulse), a, b) && angular_ok(w, m.twist_impulse, a, b);
+    // The pose the manifold was made at (World::reuse_contact): a wrong one only decides whether
+    // the next step re-measures the points or collides the shapes again.
+    ok = ok && is_finite(c.made_offset) && detail::unit_quat(c.made_turn) && is_finite(c.made_normal) &&
+         (m.count == 0 || detail::unit_vector(c.made_normal));
+    if (!ok) detail::report_corrupt("a contact's normal, points, impulses or material are out of range; contact", k);
+    // The twist lever kept under its key (World::twist_lever) must be the one the points give:
+    // the next step uses it without integrating the patch again.
+    std::array<Vec3<T>, 4> anchors{};
+    for (std::size_t i = 0; i < static_cast<std::size_t>(m.count); ++i) anchors[i] = m.points[i].local_a;
+    if (!(std::isfinite(c.twist_lever) && c.twist_lever >= T(0)) ||
+        (c.twist_lever_key == detail::patch_key(anchors, m.count) &&
+         !(c.twist_lever == detail::patch_twist_lever(anchors, m.count))))
+        detail::report_corrupt("a contact's twist lever is not the one its points give; contact", k);
+}
+
+/// Joints: types, bools, living distinct bodies, finite frames (check_joint); free joints are
+/// exactly the dead joints.
+template <class T>
+void SnapshotAccess<T>::check_joints(const World<T>& w) {
     const std::size_t nj = w.joints_.size();
     if (nj >= JointId::invalid_index) detail::report_corrupt("too many joint slots", nj);
-    for (std::size_t k = 0; k < nj; ++k) {
-        const Joint<T>& j = w.joints_[k];
-        if (!detail::raw_bool_ok(j.alive) || !detail::raw_bool_ok(j.enable_limit) || !detail::raw_bool_ok(j.enable_motor) ||
-            !detail::raw_bool_ok(j.collide_connected))
-            detail::report_corrupt("a joint's bool byte is neither 0 nor 1; joint", k);
-        if (detail::raw_enum(j.type) > detail::raw_enum(JointType::swing_twist))
-            detail::report_corrupt("a joint's type is not a JointType; joint", k);
-        if (!j.alive) continue;
-        if (!living(j.a) || !living(j.b) || j.a.index == j.b.index)
-            detail::report_corrupt("a joint does not join two living bodies; joint", k);
-        if (w.bodies_[j.a.index].type_ == BodyType::static_body && w.bodies_[j.b.index].type_ == BodyType::static_body)
-            detail::report_corrupt("a joint joins two static bodies; joint", k);
-        bool ok = is_finite(j.local_anchor_a) && is_finite(j.local_anchor_b) && is_finite(j.local_axis_a) &&
-                  is_finite(j.local_axis_b) && is_finite(j.local_ref_a) && is_finite(j.local_ref_b) &&
-                  detail::unit_quat(j.relative_rotation) && std::isfinite(j.length) && std::isfinite(j.lower_angle) &&
-                  std::isfinite(j.upper_angle) && j.lower_angle <= j.upper_angle && std::isfinite(j.motor_speed) &&
-                  std::isfinite(j.max_motor_torque) && j.max_motor_torque >= T(0) && is_finite(j.linear_impulse) &&
-                  is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) && std::isfinite(j.motor_impulse) &&
-                  linear_ok(magnitude(j.linear_impulse), j.a.index, j.b.index) &&
-                  angular_ok(magnitude(j.angular_impulse), j.a.index, j.b.index);
-        // The axial row (limit or length) and the motor push along the axis (slider, distance) or
-        // turn about it (hinge, swing-twist), each within what the solver caps it to (joint.hpp).
-        ok = ok && (detail::linear_axis(j.type)
-                        ? linear_ok(j.axial_impulse, j.a.index, j.b.index) && linear_ok(j.motor_impulse, j.a.index, j.b.index)
-                        : angular_ok(j.axial_impulse, j.a.index, j.b.index) && angular_ok(j.motor_impulse, j.a.index, j.b.index));
-        // The ranges World::create_joint accepts: anchors within max_joint_lever of their bodies, a
-        // length within max_size, a motor speed within max_setting_length.
-        ok = ok && length(j.local_anchor_a) <= detail::max_joint_lever<T>() &&
-             length(j.local_anchor_b) <= detail::max_joint_lever<T>() && std::abs(j.length) <= most &&
-             std::abs(j.motor_speed) <= detail::max_setting_length<T>();
-        ok = ok && j.cone_angle >= T(0) && j.cone_angle <= ScalarTraits<T>::pi && std::isfinite(j.swing_impulse) &&
-             j.swing_impulse >= T(0) && angular_ok(j.swing_impulse, j.a.index, j.b.index);
-        if (ok && (j.type == JointType::hinge || j.type == JointType::prismatic || j.type == JointType::swing_twist))
-            ok = detail::unit_vector(j.local_axis_a) && detail::unit_vector(j.local_axis_b) &&
-                 detail::unit_vector(j.local_ref_a) && detail::unit_vector(j.local_ref_b);
-        if (!ok) detail::report_corrupt("a joint's frames, limits or impulses are out of range; joint", k);
-    }
+    for (std::size_t k = 0; k < nj; ++k) check_joint(w, k);
     std::vector<std::uint8_t> free_joint(nj, 0);
     for (const std::uint32_t f : w.free_joints_) {
         if (f >= nj || w.joints_[f].alive || free_joint[f]++)
@@ -620,7 +614,49 @@ void SnapshotAccess<T>::check_world(const World<T>& w) {
     }
     for (std::size_t k = 0; k < nj; ++k)
         if (!w.joints_[k].alive && !free_joint[k]) detail::report_corrupt("a dead joint slot is not listed as free; slot", k);
-    // Pending events (contacts that ended since the last step): handles may be stale by design.
+}
+
+template <class T>
+void SnapshotAccess<T>::check_joint(const World<T>& w, std::size_t k) {
+    const Joint<T>& j = w.joints_[k];
+    if (!detail::raw_bool_ok(j.alive) || !detail::raw_bool_ok(j.enable_limit) || !detail::raw_bool_ok(j.enable_motor) ||
+        !detail::raw_bool_ok(j.collide_connected))
+        detail::report_corrupt("a joint's bool byte is neither 0 nor 1; joint", k);
+    if (detail::raw_enum(j.type) > detail::raw_enum(JointType::swing_twist))
+        detail::report_corrupt("a joint's type is not a JointType; joint", k);
+    if (!j.alive) return;
+    if (!living(w, j.a) || !living(w, j.b) || j.a.index == j.b.index)
+        detail::report_corrupt("a joint does not join two living bodies; joint", k);
+    if (w.bodies_[j.a.index].type_ == BodyType::static_body && w.bodies_[j.b.index].type_ == BodyType::static_body)
+        detail::report_corrupt("a joint joins two static bodies; joint", k);
+    const std::uint32_t a = j.a.index, b = j.b.index;
+    bool ok = is_finite(j.local_anchor_a) && is_finite(j.local_anchor_b) && is_finite(j.local_axis_a) &&
+              is_finite(j.local_axis_b) && is_finite(j.local_ref_a) && is_finite(j.local_ref_b) &&
+              detail::unit_quat(j.relative_rotation) && std::isfinite(j.length) && std::isfinite(j.lower_angle) &&
+              std::isfinite(j.upper_angle) && j.lower_angle <= j.upper_angle && std::isfinite(j.motor_speed) &&
+              std::isfinite(j.max_motor_torque) && j.max_motor_torque >= T(0) && is_finite(j.linear_impulse) &&
+              is_finite(j.angular_impulse) && std::isfinite(j.axial_impulse) && std::isfinite(j.motor_impulse) &&
+              linear_ok(w, magnitude(j.linear_impulse), a, b) && angular_ok(w, magnitude(j.angular_impulse), a, b);
+    // The axial row (limit or length) and the motor push along the axis (slider, distance) or
+    // turn about it (hinge, swing-twist), each within what the solver caps it to (joint.hpp).
+    ok = ok && (detail::linear_axis(j.type) ? linear_ok(w, j.axial_impulse, a, b) && linear_ok(w, j.motor_impulse, a, b)
+                                            : angular_ok(w, j.axial_impulse, a, b) && angular_ok(w, j.motor_impulse, a, b));
+    // The ranges World::create_joint accepts: anchors within max_joint_lever of their bodies, a
+    // length within max_size, a motor speed within max_setting_length.
+    ok = ok && length(j.local_anchor_a) <= detail::max_joint_lever<T>() &&
+         length(j.local_anchor_b) <= detail::max_joint_lever<T>() && std::abs(j.length) <= ScalarTraits<T>::max_size &&
+         std::abs(j.motor_speed) <= detail::max_setting_length<T>();
+    ok = ok && j.cone_angle >= T(0) && j.cone_angle <= ScalarTraits<T>::pi && std::isfinite(j.swing_impulse) &&
+         j.swing_impulse >= T(0) && angular_ok(w, j.swing_impulse, a, b);
+    if (ok && (j.type == JointType::hinge || j.type == JointType::prismatic || j.type == JointType::swing_twist))
+        ok = detail::unit_vector(j.local_axis_a) && detail::unit_vector(j.local_axis_b) && detail::unit_vector(j.local_ref_a) &&
+             detail::unit_vector(j.local_ref_b);
+    if (!ok) detail::report_corrupt("a joint's frames, limits or impulses are out of range; joint", k);
+}
+
+/// Pending events (contacts that ended since the last step): handles may be stale by design.
+template <class T>
+void SnapshotAccess<T>::check_pending_events(const World<T>& w) {
     for (std::size_t k = 0; k < w.events_pending_.size(); ++k) {
         const ContactEvent<T>& e = w.events_pending_[k];
         const auto kind = detail::raw_enum(e.kind);

@@ -578,6 +578,9 @@ private:
     detail::BodyIntegration<T> integration_constants(const Body<T>& b, const detail::SolverMass<T>& s, T h) const;
     void update_bounds(T dt);
     void narrow_phase(T dt);
+    void classify_pairs(T dt);
+    void collide_on_workers(T dt);
+    void merge_contacts(T dt);
     void wake_touched_islands(T dt);
     bool closes_within_step(const Contact<T>& c, T dt) const;
     bool within_slop(const Contact<T>& c) const;
@@ -1293,6 +1296,19 @@ void World<T>::rebuild_query_tree() {
 // every pair itself: the same calls on the same inputs, without a contact per pair kept apart.
 template <class T>
 void World<T>::narrow_phase(T dt) {
+    classify_pairs(dt);
+    reject_apart_pairs(dt);
+    collide_on_workers(dt);
+    merge_contacts(dt);
+    contacts_.swap(next_contacts_);
+    index_contacts(bodies_.size());
+    stats_.contacts = contacts_.size();
+}
+
+/// Pass 1 of narrow_phase, in pair order: each pair's kind (PairWork) and its contacts of last
+/// step; the collided pairs listed for the early-out, the mesh pairs for the workers.
+template <class T>
+void World<T>::classify_pairs(T dt) {
     const bool parallel = workers() > 1;
     pair_work_.resize(pairs_.size());
     collide_jobs_.clear();
@@ -1331,7 +1347,13 @@ void World<T>::narrow_phase(T dt) {
         if (work.kind == PairKind::collided) early_jobs_.push_back(static_cast<std::uint32_t>(k));
         if (parallel && work.kind == PairKind::mesh) mesh_jobs_.push_back(static_cast<std::uint32_t>(k));
     }
-    reject_apart_pairs(dt);
+}
+
+/// Pass 2 of narrow_phase, several workers only: the collided pairs the early-out left and the
+/// mesh pairs' manifolds, each pair on its own, through the task system.
+template <class T>
+void World<T>::collide_on_workers(T dt) {
+    const bool parallel = workers() > 1;
     if (parallel)
         for (const std::uint32_t k : early_jobs_)
             if (pair_work_[k].kind == PairKind::collided) collide_jobs_.push_back(k);
@@ -1358,13 +1380,17 @@ void World<T>::narrow_phase(T dt) {
             (this->*mesh_stage_.manifolds)(pair, pair_margin(bodies_[pair.a], bodies_[pair.b], dt), mesh_job_manifolds_[j]);
         }
     });
+}
 
-    // The merge, in pair order: ended contacts reported, each pair's contacts into `next`. On one
-    // worker they are copied (or made) there at once. On several, this pass only says where each
-    // run of contacts goes (compound and mesh pairs are made into side_contacts_ first), and the
-    // runs are copied in parallel afterwards: a serial copy of every contact (280 bytes in float,
-    // on two workers half of them just written by the other core) was the largest serial part of
-    // the narrow phase (docs/parallel.md).
+/// Pass 3 of narrow_phase, the merge, in pair order: ended contacts reported, each pair's
+/// contacts into next_contacts_. On one worker they are copied (or made) there at once. On
+/// several, this pass only says where each run of contacts goes (compound and mesh pairs are made
+/// into side_contacts_ first), and the runs are copied in parallel afterwards: a serial copy of
+/// every contact (280 bytes in float, on two workers half of them just written by the other core)
+/// was the largest serial part of the narrow phase (docs/parallel.md).
+template <class T>
+void World<T>::merge_contacts(T dt) {
+    const bool parallel = workers() > 1;
     std::vector<Contact<T>>& next = next_contacts_;
     std::vector<Contact<T>>& made = parallel ? side_contacts_ : next;  // where compound and mesh pairs append
     made.clear();
@@ -1384,8 +1410,7 @@ void World<T>::narrow_phase(T dt) {
             if (kept) next.back().was_touching = next.back().touching;
         }
     };
-    old = 0;
-    std::size_t job = 0, mesh_job = 0;
+    std::size_t old = 0, job = 0, mesh_job = 0;
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
         const PairWork& work = pair_work_[k];
         while (old < work.old_begin) end_contact(contacts_[old++]);  // no pair this step: ended
@@ -1423,9 +1448,6 @@ void World<T>::narrow_phase(T dt) {
     }
     if (parallel) copy_placed_runs(placed);
     while (old < contacts_.size()) end_contact(contacts_[old++]);
-    contacts_.swap(next);
-    index_contacts(bodies_.size());
-    stats_.contacts = contacts_.size();
 }
 
 /// Several workers: every run the merge placed (narrow_phase) copied into next_contacts_, which
