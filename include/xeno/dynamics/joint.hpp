@@ -266,18 +266,28 @@ void warm_start_joint(const Joint<T>& j, const JointConstraint<T>& c, SolverBody
     b.w += c.mass_b.inv_inertia * angular;
 }
 
+/// A joint row's softness in one pass: the biased pass takes the joint's, the relax pass none.
+template <class T>
+struct PassSoftness {
+    T bias_rate, mass_scale, impulse_scale;
+    PassSoftness(const Softness<T>& s, bool use_bias)
+        : bias_rate(use_bias ? s.bias_rate : T(0)),
+          mass_scale(use_bias ? s.mass_scale : T(1)),
+          impulse_scale(use_bias ? s.impulse_scale : T(0)) {}
+};
+
 /// The three rows that hold B's orientation at A's times the one they had at creation (fixed and
 /// prismatic joints), as one 3×3 block; the error is 2·vec(q_B (q_A q_rel)⁻¹).
 template <class T>
-void solve_orientation_lock(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, T bias_rate,
-                            T mass_scale, T impulse_scale) {
+void solve_orientation_lock(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b,
+                            const PassSoftness<T>& s) {
     const Quat<T> qa = a.dq * c.qa0, qb = b.dq * c.qb0;
     Quat<T> err = qb * conjugate(qa * j.relative_rotation);
     if (err.w < T(0)) err = -err;
     const Vec3<T> error = err.vec() * T(2);
     if (const std::optional<Mat3<T>> k_inv = try_inverse(c.mass_a.inv_inertia + c.mass_b.inv_inertia)) {
-        const Vec3<T> cdot = (b.w - a.w) + error * bias_rate;
-        const Vec3<T> impulse = (*k_inv * cdot) * (-mass_scale) - j.angular_impulse * impulse_scale;
+        const Vec3<T> cdot = (b.w - a.w) + error * s.bias_rate;
+        const Vec3<T> impulse = (*k_inv * cdot) * (-s.mass_scale) - j.angular_impulse * s.impulse_scale;
         j.angular_impulse += impulse;
         a.w -= c.mass_a.inv_inertia * impulse;
         b.w += c.mass_b.inv_inertia * impulse;
@@ -306,17 +316,15 @@ void solve_slider(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, So
         apply_impulse(b, c.mass_b, rb, n * lambda);
     };
     const auto speed = [&](const Vec3<T>& n) { return dot(b.velocity_at(rb) - a.velocity_at(la), n); };
-    const T bias_rate = use_bias ? c.softness.bias_rate : T(0);
-    const T mass_scale = use_bias ? c.softness.mass_scale : T(1);
-    const T impulse_scale = use_bias ? c.softness.impulse_scale : T(0);
+    const PassSoftness<T> soft(c.softness, use_bias);
     Vec3<T> b1, b2;
     perpendicular_pair(axis, b1, b2);
     Vec3<T> across = Vec3<T>::zero();
     for (const Vec3<T>& n : {b1, b2}) {
         const T m = row_mass(c, la, rb, n);
         const T accumulated = dot(n, j.linear_impulse);
-        const T bias = clamp(bias_rate * dot(n, d), -c.max_bias_speed, c.max_bias_speed);
-        const T delta = -mass_scale * m * (speed(n) + bias) - impulse_scale * accumulated;
+        const T bias = clamp(soft.bias_rate * dot(n, d), -c.max_bias_speed, c.max_bias_speed);
+        const T delta = -soft.mass_scale * m * (speed(n) + bias) - soft.impulse_scale * accumulated;
         across += n * (accumulated + delta);
         push(n, delta);
     }
@@ -392,78 +400,62 @@ void solve_swing_twist_limits(Joint<T>& j, const JointConstraint<T>& c, SolverBo
     j.swing_impulse = -along;
 }
 
-/// One pass over a joint's rows; use_bias false in the relax pass. h: the substep. The point
-/// block goes first and the angular rows after it, the limit last of all, so that what must hold
-/// (the stop) is solved last, as contact normals are.
+/// A distance joint's one row along the line between its anchors (ra, rb: the anchors' levers).
 template <class T>
-void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, bool use_bias, T h) {
-    const Vec3<T> ra = rotate(a.dq, c.r_a0), rb = rotate(b.dq, c.r_b0);
-    const T bias_rate = use_bias ? c.softness.bias_rate : T(0);
-    const T mass_scale = use_bias ? c.softness.mass_scale : T(1);
-    const T impulse_scale = use_bias ? c.softness.impulse_scale : T(0);
-    const Mat3<T> inv_i = c.mass_a.inv_inertia + c.mass_b.inv_inertia;
+void solve_distance(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, const Vec3<T>& ra,
+                    const Vec3<T>& rb, const PassSoftness<T>& s) {
+    const Vec3<T> d = (b.dp - a.dp) + c.delta_center + rb - ra;
+    const T len = length(d);
+    // (A length that overflows still has a direction: capped_length scales before squaring.)
+    const Vec3<T> n = !std::isfinite(len) ? detail::capped_length(d, T(1)) : len > T(0) ? d / len : Vec3<T>::unit_y();
+    const Vec3<T> rna = cross(ra, n), rnb = cross(rb, n);
+    const T k =
+        c.mass_a.inv_mass + c.mass_b.inv_mass + dot(rna, c.mass_a.inv_inertia * rna) + dot(rnb, c.mass_b.inv_inertia * rnb);
+    if (!(k > T(0))) return;
+    const T bias = s.bias_rate > T(0) ? clamp(s.bias_rate * (len - j.length), -c.max_bias_speed, c.max_bias_speed) : T(0);
+    const T cdot = dot(b.velocity_at(rb) - a.velocity_at(ra), n) + bias;
+    const T delta = -s.mass_scale * cdot / k - s.impulse_scale * j.axial_impulse;
+    j.axial_impulse += delta;
+    apply_impulse(a, c.mass_a, ra, -n * delta);
+    apply_impulse(b, c.mass_b, rb, n * delta);
+}
 
-    if (j.type == JointType::distance) {
-        const Vec3<T> d = (b.dp - a.dp) + c.delta_center + rb - ra;
-        const T len = length(d);
-        // (A length that overflows still has a direction: capped_length scales before squaring.)
-        const Vec3<T> n = !std::isfinite(len) ? detail::capped_length(d, T(1)) : len > T(0) ? d / len : Vec3<T>::unit_y();
-        const Vec3<T> rna = cross(ra, n), rnb = cross(rb, n);
-        const T k =
-            c.mass_a.inv_mass + c.mass_b.inv_mass + dot(rna, c.mass_a.inv_inertia * rna) + dot(rnb, c.mass_b.inv_inertia * rnb);
-        if (k > T(0)) {
-            const T bias = bias_rate > T(0) ? clamp(bias_rate * (len - j.length), -c.max_bias_speed, c.max_bias_speed) : T(0);
-            const T cdot = dot(b.velocity_at(rb) - a.velocity_at(ra), n) + bias;
-            const T delta = -mass_scale * cdot / k - impulse_scale * j.axial_impulse;
-            j.axial_impulse += delta;
-            apply_impulse(a, c.mass_a, ra, -n * delta);
-            apply_impulse(b, c.mass_b, rb, n * delta);
-        }
-        return;
-    }
-
-    if (j.type == JointType::prismatic) {
-        solve_orientation_lock(j, c, a, b, bias_rate, mass_scale, impulse_scale);
-        solve_slider(j, c, a, b, use_bias, h);
-        return;
-    }
-
-    // The point rows (ball, hinge, fixed), as one 3×3 block.
+/// The point rows of a ball, hinge or fixed joint, as one 3×3 block: the anchors meet.
+template <class T>
+void solve_point_block(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, const Vec3<T>& ra,
+                       const Vec3<T>& rb, const PassSoftness<T>& s) {
     const Mat3<T> k = Mat3<T>::identity() * (c.mass_a.inv_mass + c.mass_b.inv_mass) +
                       detail::point_mass_term(ra, c.mass_a.inv_inertia) + detail::point_mass_term(rb, c.mass_b.inv_inertia);
-    if (const std::optional<Mat3<T>> k_inv = try_inverse(k)) {
-        const Vec3<T> separation = (b.dp - a.dp) + c.delta_center + rb - ra;
-        const Vec3<T> bias = bias_rate > T(0) ? detail::capped_length(separation * bias_rate, c.max_bias_speed) : Vec3<T>::zero();
-        const Vec3<T> cdot = b.velocity_at(rb) - a.velocity_at(ra) + bias;
-        const Vec3<T> impulse = (*k_inv * cdot) * (-mass_scale) - j.linear_impulse * impulse_scale;
-        j.linear_impulse += impulse;
-        apply_impulse(a, c.mass_a, ra, -impulse);
-        apply_impulse(b, c.mass_b, rb, impulse);
-    }
+    const std::optional<Mat3<T>> k_inv = try_inverse(k);
+    if (!k_inv) return;
+    const Vec3<T> separation = (b.dp - a.dp) + c.delta_center + rb - ra;
+    const Vec3<T> bias = s.bias_rate > T(0) ? detail::capped_length(separation * s.bias_rate, c.max_bias_speed) : Vec3<T>::zero();
+    const Vec3<T> cdot = b.velocity_at(rb) - a.velocity_at(ra) + bias;
+    const Vec3<T> impulse = (*k_inv * cdot) * (-s.mass_scale) - j.linear_impulse * s.impulse_scale;
+    j.linear_impulse += impulse;
+    apply_impulse(a, c.mass_a, ra, -impulse);
+    apply_impulse(b, c.mass_b, rb, impulse);
+}
 
-    if (j.type == JointType::fixed) {
-        solve_orientation_lock(j, c, a, b, bias_rate, mass_scale, impulse_scale);
-        return;
-    }
-    if (j.type == JointType::swing_twist) {
-        solve_swing_twist_limits(j, c, a, b, use_bias, h);
-        return;
-    }
-    if (j.type != JointType::hinge) return;
-
+/// A hinge's rows after its point block: two that keep the axes aligned, the motor about the
+/// axis, and the limit last (a one-sided row at whichever end is nearer, speculative above it,
+/// as contacts).
+template <class T>
+void solve_hinge_axis(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, const PassSoftness<T>& s,
+                      bool use_bias, T h) {
+    const Mat3<T> inv_i = c.mass_a.inv_inertia + c.mass_b.inv_inertia;
     const Vec3<T> axis = rotate(a.dq, c.axis_a0);
-    // Keep the axes aligned: two rows perpendicular to A's axis.
     Vec3<T> b1, b2;
     detail::perpendicular_pair(axis, b1, b2);
     const Vec3<T> error = cross(axis, rotate(b.dq, c.axis_b0));
     const Vec3<T> dw = b.w - a.w;
-    const T c1 = dot(b1, dw) + bias_rate * dot(b1, error), c2 = dot(b2, dw) + bias_rate * dot(b2, error);
+    const T c1 = dot(b1, dw) + s.bias_rate * dot(b1, error), c2 = dot(b2, dw) + s.bias_rate * dot(b2, error);
     const T k11 = dot(b1, inv_i * b1), k12 = dot(b1, inv_i * b2), k22 = dot(b2, inv_i * b2);
     const T det = k11 * k22 - k12 * k12;
     if (det > T(0)) {
         const T p1 = dot(b1, j.angular_impulse), p2 = dot(b2, j.angular_impulse);
-        const T l1 = -mass_scale * (k22 * c1 - k12 * c2) / det - impulse_scale * p1;
-        const T l2 = -mass_scale * (k11 * c2 - k12 * c1) / det - impulse_scale * p2;
+        const T l1 = -s.mass_scale * (k22 * c1 - k12 * c2) / det - s.impulse_scale * p1;
+        const T l2 = -s.mass_scale * (k11 * c2 - k12 * c1) / det - s.impulse_scale * p2;
         const Vec3<T> impulse = b1 * l1 + b2 * l2;
         j.angular_impulse = b1 * (p1 + l1) + b2 * (p2 + l2);
         a.w -= c.mass_a.inv_inertia * impulse;
@@ -481,10 +473,29 @@ void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, Sol
         a.w -= c.mass_a.inv_inertia * impulse;
         b.w += c.mass_b.inv_inertia * impulse;
     }
-    // Limit: a one-sided row at whichever end is nearer (speculative above it, as contacts).
     if (j.enable_limit) {
         const T angle = j.hinge_angle(a.dq * c.qa0, b.dq * c.qb0);
         solve_angular_limit(c, a, b, axis, angle, j.lower_angle, j.upper_angle, j.axial_impulse, use_bias, h);
+    }
+}
+
+/// One pass over a joint's rows; use_bias false in the relax pass. h: the substep. The point
+/// block goes first and the angular rows after it, the limit last of all, so that what must hold
+/// (the stop) is solved last, as contact normals are.
+template <class T>
+void solve_joint(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, bool use_bias, T h) {
+    const Vec3<T> ra = rotate(a.dq, c.r_a0), rb = rotate(b.dq, c.r_b0);
+    const PassSoftness<T> s(c.softness, use_bias);
+    if (j.type == JointType::distance) {
+        solve_distance(j, c, a, b, ra, rb, s);
+    } else if (j.type == JointType::prismatic) {
+        solve_orientation_lock(j, c, a, b, s);
+        solve_slider(j, c, a, b, use_bias, h);
+    } else {
+        solve_point_block(j, c, a, b, ra, rb, s);
+        if (j.type == JointType::fixed) solve_orientation_lock(j, c, a, b, s);
+        else if (j.type == JointType::swing_twist) solve_swing_twist_limits(j, c, a, b, use_bias, h);
+        else if (j.type == JointType::hinge) solve_hinge_axis(j, c, a, b, s, use_bias, h);
     }
 }
 
