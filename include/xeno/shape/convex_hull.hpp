@@ -808,6 +808,57 @@ std::vector<bool> vertices_to_drop(const std::vector<Vec3<W>>& v, const std::vec
     return drop;
 }
 
+/// Step 4 of make_convex_hull: Quickhull over `candidates` of the centred points q (starting at
+/// `simplex`), then drop vertices of faces too small for ConvexPolyhedron<T> (`rounded`: the
+/// points as it will see them) and rebuild from the remaining vertices until none is left (see
+/// the top of the file). Each round drops at least one vertex, so the loop ends. A mesh torn by
+/// round-off (not seen in testing) is rebuilt with thicker faces. Returns the faces' vertex loops.
+template <class T, class W>
+std::vector<std::vector<std::uint32_t>> hull_faces(const std::vector<Vec3<W>>& q, const std::vector<Vec3<W>>& rounded,
+                                                   std::vector<std::uint32_t> candidates, HullSimplex<W> simplex, W tolerance) {
+    const char* where = "make_convex_hull";
+    const std::size_t n = q.size();
+    const W flat = W(64) * tolerance;  // ConvexPolyhedron's tolerance
+    std::vector<std::vector<std::uint32_t>> faces;
+    constexpr int max_rounds = 1000;
+    for (int round = 0;; ++round) {
+        bool built = false;
+        W thickness = tolerance;
+        for (int attempt = 0; attempt < 3 && !built; ++attempt, thickness *= W(4)) {
+            QuickHullBuilder<W> builder(q, thickness);
+            built = builder.build(candidates, simplex.index);
+            if (built) faces = builder.face_loops();
+        }
+        if (!built)
+            report_invalid(where, "could not build a consistent hull (round-off defeated every tolerance); point count",
+                           static_cast<double>(n));
+        remove_straight_edge_vertices(faces, n);
+
+        const HullCheck<W> check = check_hull_faces<T>(rounded, faces);
+        if (!(check.volume > check.min_volume))
+            report_invalid(where, "points are collinear or coplanar within tolerance; hull volume (m^3)", check.volume);
+        if (check.all_faces_good) return faces;
+        if (round == max_rounds)
+            report_invalid(where, "could not reduce the hull to faces ConvexPolyhedron can represent; point count",
+                           static_cast<double>(n));
+
+        const std::vector<bool> drop = vertices_to_drop(rounded, faces, check.area, check.bad_face);
+        std::vector<bool> on_hull(n, false);
+        for (const auto& face : faces)
+            for (std::uint32_t i : face) on_hull[i] = true;
+        candidates.clear();
+        for (std::uint32_t i = 0; i < n; ++i)
+            if (on_hull[i] && !drop[i]) candidates.push_back(i);
+        if (candidates.size() < 4)
+            report_invalid(where, "points are coplanar within tolerance; usable vertex count",
+                           static_cast<double>(candidates.size()));
+        simplex = hull_simplex(q, candidates);
+        if (!(simplex.line_distance > flat && simplex.plane_distance > flat))
+            report_invalid(where, "points are coplanar within tolerance; largest distance from their plane (m)",
+                           simplex.plane_distance);
+    }
+}
+
 }  // namespace detail
 
 template <class T>
@@ -861,50 +912,10 @@ ConvexHull<T> make_convex_hull(const std::vector<Vec3<T>>& points) {
     if (!(simplex.plane_distance > flat))
         detail::report_invalid(where, "points are coplanar; largest distance from their plane (m)", simplex.plane_distance);
 
-    // 4. Quickhull, then drop vertices of faces too small for ConvexPolyhedron<T> and rebuild
-    // from the remaining vertices until none is left (see the top of the file). Each round drops
-    // at least one vertex, so the loop ends. A mesh torn by round-off (not seen in testing) is
-    // rebuilt with thicker faces.
+    // 4. Quickhull, then drop vertices of faces too small for ConvexPolyhedron<T> and rebuild.
     std::vector<Vec3<W>> rounded(n);  // what ConvexPolyhedron<T> will see: p - centre in T
     for (std::size_t i = 0; i < n; ++i) rounded[i] = Vec3<W>(points[i] - centre);
-    std::vector<std::vector<std::uint32_t>> faces;
-    constexpr int max_rounds = 1000;
-    for (int round = 0;; ++round) {
-        bool built = false;
-        W thickness = tolerance;
-        for (int attempt = 0; attempt < 3 && !built; ++attempt, thickness *= W(4)) {
-            detail::QuickHullBuilder<W> builder(q, thickness);
-            built = builder.build(candidates, simplex.index);
-            if (built) faces = builder.face_loops();
-        }
-        if (!built)
-            detail::report_invalid(where, "could not build a consistent hull (round-off defeated every tolerance); point count",
-                                   static_cast<double>(n));
-        detail::remove_straight_edge_vertices(faces, n);
-
-        const detail::HullCheck<W> check = detail::check_hull_faces<T>(rounded, faces);
-        if (!(check.volume > check.min_volume))
-            detail::report_invalid(where, "points are collinear or coplanar within tolerance; hull volume (m^3)", check.volume);
-        if (check.all_faces_good) break;
-        if (round == max_rounds)
-            detail::report_invalid(where, "could not reduce the hull to faces ConvexPolyhedron can represent; point count",
-                                   static_cast<double>(n));
-
-        const std::vector<bool> drop = detail::vertices_to_drop(rounded, faces, check.area, check.bad_face);
-        std::vector<bool> on_hull(n, false);
-        for (const auto& face : faces)
-            for (std::uint32_t i : face) on_hull[i] = true;
-        candidates.clear();
-        for (std::uint32_t i = 0; i < n; ++i)
-            if (on_hull[i] && !drop[i]) candidates.push_back(i);
-        if (candidates.size() < 4)
-            detail::report_invalid(where, "points are coplanar within tolerance; usable vertex count",
-                                   static_cast<double>(candidates.size()));
-        simplex = detail::hull_simplex(q, candidates);
-        if (!(simplex.line_distance > flat && simplex.plane_distance > flat))
-            detail::report_invalid(where, "points are coplanar within tolerance; largest distance from their plane (m)",
-                                   simplex.plane_distance);
-    }
+    std::vector<std::vector<std::uint32_t>> faces = detail::hull_faces<T>(q, rounded, std::move(candidates), simplex, tolerance);
 
     // 5. The polyhedron, on compact vertex indices, then re-centred on its centroid.
     std::vector<std::uint32_t> index_of(n, 0xffffffffu);
