@@ -19,6 +19,102 @@ namespace xeno {
 
 namespace detail {
 
+/// The best of the 9 edge-edge axes so far: index 3 i + j (A's axis i × B's axis j; −1: none
+/// beats `overlap`), its overlap and unit axis.
+template <class T>
+struct EdgeAxis {
+    int index = -1;
+    T overlap;
+    Vec3<T> axis;
+};
+
+/// The edge-edge axes of box_box_axis (A's frame; half extents a and b, B's rotation r, |r| + ε
+/// and offset t): `best` takes any axis shallower than best.overlap. False as soon as one
+/// separates the boxes by more than the margin.
+template <class T>
+bool least_edge_overlap(const Vec3<T>& a, const Vec3<T>& b, const Mat3<T>& r, const Mat3<T>& abs_r, const Vec3<T>& t, T margin,
+                        EdgeAxis<T>& best) {
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            const Vec3<T> axis = cross(Vec3<T>::axis(i), r.column(j));
+            const T len = length(axis);
+            if (len < T(1e-5)) continue;  // parallel edges: the face axes cover them
+            const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            const T ra = a[i1] * abs_r[i2][j] + a[i2] * abs_r[i1][j];
+            const T rb = b[j1] * abs_r[i][j2] + b[j2] * abs_r[i][j1];
+            const T overlap = (ra + rb - std::abs(dot(t, axis))) / len + margin;
+            if (overlap < T(0)) return false;
+            if (overlap < best.overlap) {
+                best.overlap = overlap;
+                best.index = 3 * i + j;
+                best.axis = axis / len;
+            }
+        }
+    }
+    return true;
+}
+
+/// The points of an edge-edge contact along n with overlap h: the closest points of A's edge
+/// along its axis i through its support point along n and B's edge along its axis j through its
+/// support point along -n, put h apart along n around their middle, as for the other pairs.
+template <class T>
+void edge_contact_points(const MinkowskiDifference<Box<T>, Box<T>>& md, const Vec3<T>& n, T h, int i, int j, Vec3<T>& point_a,
+                         Vec3<T>& point_b) {
+    const Vec3<T>& a = md.shape_a().half_extents();
+    const Vec3<T>& b = md.shape_b().half_extents();
+    Vec3<T> pa = md.shape_a().support(n), pb_local = md.shape_b().support(md.direction_to_b(-n));
+    Vec3<T> qa = pa, qb_local = pb_local;
+    pa[i] = -a[i];
+    qa[i] = a[i];
+    pb_local[j] = -b[j];
+    qb_local[j] = b[j];
+    closest_points_of_segments(pa, qa, md.to_a(pb_local), md.to_a(qb_local), point_a, point_b);
+    const Vec3<T> middle = (point_a + point_b) * T(0.5);
+    point_a = middle + n * (T(0.5) * h);
+    point_b = middle - n * (T(0.5) * h);
+}
+
+/// The single-contact points of a face contact along n with overlap h, `face` the reference face's
+/// axis (0–2: A's, 3–5: B's).
+template <bool OnSurfaces, class T>
+void face_contact_points(const MinkowskiDifference<Box<T>, Box<T>>& md, const Vec3<T>& n, T h, int face, Vec3<T>& point_a,
+                         Vec3<T>& point_b) {
+    if constexpr (OnSurfaces) {
+        // collide(): the incident box's deepest corner when it lies over the reference face (then
+        // it and its projection are on both surfaces: the common case, and cheap); else the middle
+        // of where the two support features overlap across n, lifted onto both surfaces
+        // (contact_points.hpp). The corner alone can be metres outside a small box when the other
+        // is large.
+        auto over_face = [](const Vec3<T>& p, const Vec3<T>& half, int axis) {
+            for (int k = 0; k < 3; ++k)
+                if (k != axis && std::abs(p[k]) > half[k]) return false;
+            return true;
+        };
+        if (face < 3) {
+            const Vec3<T> corner_b = md.to_a(md.shape_b().support(md.direction_to_b(-n)));
+            if (over_face(corner_b, md.shape_a().half_extents(), face)) {
+                point_b = corner_b;
+                point_a = corner_b + n * h;
+                return;
+            }
+        } else {
+            const Vec3<T> corner_a = md.shape_a().support(n);
+            const Vec3<T> t = md.to_a(Vec3<T>::zero());
+            if (over_face(transposed_transform(md.rotation_b(), corner_a - t), md.shape_b().half_extents(), face - 3)) {
+                point_a = corner_a;
+                point_b = corner_a - n * h;
+                return;
+            }
+        }
+        place_contact_points(md, n, h, static_cast<const Vec3<T>*>(nullptr), point_a, point_b);
+        return;
+    }
+    // The manifold's fallback (face contacts get their points from clipping): B's deepest vertex
+    // and its projection.
+    point_b = md.to_a(md.shape_b().support(md.direction_to_b(-n)));
+    point_a = point_b + n * h;
+}
+
 /// The least-overlap axis of two boxes (A's frame): normal n from A to B, overlap h (< 0 means
 /// separated by −h, at most the margin), and single-contact points (on both surfaces for edge
 /// contacts, and for face contacts too with OnSurfaces, collide()'s contract).
@@ -57,43 +153,13 @@ bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& 
         }
     }
     const T slack = T(1e-3) * std::min(min_component(a), min_component(b));
-    int best_edge = -1;
-    T best_edge_overlap = best - slack;
-    Vec3<T> best_edge_axis;
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-            const Vec3<T> axis = cross(Vec3<T>::axis(i), r.column(j));
-            const T len = length(axis);
-            if (len < T(1e-5)) continue;  // parallel edges: the face axes cover them
-            const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            const T ra = a[i1] * abs_r[i2][j] + a[i2] * abs_r[i1][j];
-            const T rb = b[j1] * abs_r[i][j2] + b[j2] * abs_r[i][j1];
-            const T overlap = (ra + rb - std::abs(dot(t, axis))) / len + margin;
-            if (overlap < T(0)) return false;
-            if (overlap < best_edge_overlap) {
-                best_edge_overlap = overlap;
-                best_edge = 3 * i + j;
-                best_edge_axis = axis / len;
-            }
-        }
-    }
-    if (best_edge >= 0) {
-        n = dot(best_edge_axis, t) >= T(0) ? best_edge_axis : -best_edge_axis;
-        h = best_edge_overlap - margin;
-        // The support edges: A's edge along axis i through its support point along n, B's along
-        // its axis j through its support point along -n.
-        const int i = best_edge / 3, j = best_edge % 3;
-        Vec3<T> pa = md.shape_a().support(n), pb_local = md.shape_b().support(md.direction_to_b(-n));
-        Vec3<T> qa = pa, qb_local = pb_local;
-        pa[i] = -a[i];
-        qa[i] = a[i];
-        pb_local[j] = -b[j];
-        qb_local[j] = b[j];
-        closest_points_of_segments(pa, qa, md.to_a(pb_local), md.to_a(qb_local), point_a, point_b);
-        // Put the points h apart along n around their middle, as for the other pairs.
-        const Vec3<T> middle = (point_a + point_b) * T(0.5);
-        point_a = middle + n * (T(0.5) * h);
-        point_b = middle - n * (T(0.5) * h);
+    EdgeAxis<T> edge;
+    edge.overlap = best - slack;
+    if (!least_edge_overlap(a, b, r, abs_r, t, margin, edge)) return false;
+    if (edge.index >= 0) {
+        n = dot(edge.axis, t) >= T(0) ? edge.axis : -edge.axis;
+        h = edge.overlap - margin;
+        edge_contact_points(md, n, h, edge.index / 3, edge.index % 3, point_a, point_b);
         return true;
     }
     h = best - margin;
@@ -103,39 +169,7 @@ bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& 
         const int j = best_axis - 3;
         n = r.column(j) * (t_in_b[j] >= T(0) ? T(1) : T(-1));
     }
-    if constexpr (OnSurfaces) {
-        // collide(): the incident box's deepest corner when it lies over the reference face (then
-        // it and its projection are on both surfaces: the common case, and cheap); else the middle
-        // of where the two support features overlap across n, lifted onto both surfaces
-        // (contact_points.hpp). The corner alone can be metres outside a small box when the other
-        // is large.
-        auto over_face = [](const Vec3<T>& p, const Vec3<T>& half, int axis) {
-            for (int k = 0; k < 3; ++k)
-                if (k != axis && std::abs(p[k]) > half[k]) return false;
-            return true;
-        };
-        if (best_axis < 3) {
-            const Vec3<T> corner_b = md.to_a(md.shape_b().support(md.direction_to_b(-n)));
-            if (over_face(corner_b, a, best_axis)) {
-                point_b = corner_b;
-                point_a = corner_b + n * h;
-                return true;
-            }
-        } else {
-            const Vec3<T> corner_a = md.shape_a().support(n);
-            if (over_face(transposed_transform(r, corner_a - t), b, best_axis - 3)) {
-                point_a = corner_a;
-                point_b = corner_a - n * h;
-                return true;
-            }
-        }
-        place_contact_points(md, n, h, static_cast<const Vec3<T>*>(nullptr), point_a, point_b);
-        return true;
-    }
-    // The manifold's fallback (face contacts get their points from clipping): B's deepest vertex
-    // and its projection.
-    point_b = md.to_a(md.shape_b().support(md.direction_to_b(-n)));
-    point_a = point_b + n * h;
+    face_contact_points<OnSurfaces>(md, n, h, best_axis, point_a, point_b);
     return true;
 }
 
