@@ -276,6 +276,55 @@ struct SnapshotAccess {
         return std::move(w.bytes);
     }
 
+    /// One compound, restored field by field: rebuilding it would re-centre it by round-off.
+    static std::shared_ptr<const Compound<T>> read_compound(detail::ByteReader& r, std::size_t size) {
+        const std::uint64_t n = r.get<std::uint64_t>();
+        Compound<T> compound;
+        for (std::uint64_t i = 0; i < n && i < size; ++i) {
+            Shape<T> shape = detail::read_shape<T>(r);
+            compound.children_.push_back({std::move(shape), r.get<Transform<T>>()});
+        }
+        compound.shift_ = r.get<Vec3<T>>(), compound.unit_mass_ = r.get<MassProperties<T>>();
+        compound.bounds_ = r.get<Aabb<T>>(), compound.radius_ = r.get<T>();
+        if (compound.children_.empty()) detail::report_invalid("restore_snapshot", "a compound without parts", 0.0);
+        check_compound(compound);
+        return std::make_shared<const Compound<T>>(std::move(compound));
+    }
+
+    /// One body slot, its geometry one of `shapes` or `compounds` (check_body checks the rest).
+    static void read_body(detail::ByteReader& r, const std::vector<std::shared_ptr<const Shape<T>>>& shapes,
+                          const std::vector<std::shared_ptr<const Compound<T>>>& compounds, Body<T>& b) {
+        b.alive_ = r.get_bool();
+        b.generation_ = r.get<std::uint32_t>();
+        if (!b.alive_) return;
+        const std::uint32_t shape = r.get<std::uint32_t>(), compound = r.get<std::uint32_t>();
+        if (shape != ~std::uint32_t(0)) {
+            if (shape >= shapes.size()) detail::report_invalid("restore_snapshot", "a body refers to a missing shape", shape);
+            if (compound != ~std::uint32_t(0))
+                detail::report_invalid("restore_snapshot", "a body refers to both a shape and a compound", compound);
+            b.set_geometry(shapes[shape], nullptr, nullptr);
+        } else {
+            if (compound >= compounds.size())
+                detail::report_invalid("restore_snapshot", "a body refers to a missing compound", compound);
+            b.set_geometry(nullptr, compounds[compound], nullptr);
+        }
+        b.position_ = r.get<Vec3<T>>(), b.orientation_ = r.get<Quat<T>>();
+        b.linear_velocity_ = r.get<Vec3<T>>(), b.angular_velocity_ = r.get<Vec3<T>>();
+        b.force_ = r.get<Vec3<T>>(), b.torque_ = r.get<Vec3<T>>(), b.inertia_local_ = r.get<Mat3<T>>();
+        b.inverse_mass_ = r.get<T>(), b.material_ = r.get<Material<T>>();
+        b.linear_damping_ = r.get<T>(), b.angular_damping_ = r.get<T>(), b.gravity_scale_ = r.get<T>(),
+        b.sleep_time_ = r.get<T>(), b.density_ = r.get<T>();
+        b.rest_position_ = r.get<Vec3<T>>(), b.rest_orientation_ = r.get<Quat<T>>();
+        b.user_data_ = r.get<std::uint64_t>(), b.layer_ = r.get<std::uint32_t>(), b.mask_ = r.get<std::uint32_t>();
+        const std::uint8_t type = r.get<std::uint8_t>();
+        if (type > static_cast<std::uint8_t>(BodyType::dynamic))
+            detail::report_invalid("restore_snapshot", "a body's type is not a BodyType", type);
+        b.type_ = static_cast<BodyType>(type);
+        b.awake_ = r.get_bool(), b.allow_sleep_ = r.get_bool(), b.fast_ = r.get_bool(), b.sensor_ = r.get_bool();
+        b.isotropic_ = r.get_bool(), b.moved_ = r.get_bool();
+        b.enabled_ = r.get_bool();
+    }
+
     static void restore(World<T>& world, const std::vector<std::uint8_t>& bytes) {
         world.require_outside_filter("restore_snapshot");
         // Everything is read into a fresh world first: a bad buffer leaves `world` untouched.
@@ -305,54 +354,12 @@ struct SnapshotAccess {
         for (auto& s : shapes) s = std::make_shared<const Shape<T>>(detail::read_shape<T>(r));
         std::vector<std::shared_ptr<const Compound<T>>> compounds(
             static_cast<std::size_t>(std::min<std::uint64_t>(r.get<std::uint64_t>(), bytes.size())));
-        for (auto& c : compounds) {
-            const std::uint64_t n = r.get<std::uint64_t>();
-            Compound<T> compound;  // restored field by field: rebuilding would re-centre by round-off
-            for (std::uint64_t i = 0; i < n && i < bytes.size(); ++i) {
-                Shape<T> shape = detail::read_shape<T>(r);
-                compound.children_.push_back({std::move(shape), r.get<Transform<T>>()});
-            }
-            compound.shift_ = r.get<Vec3<T>>(), compound.unit_mass_ = r.get<MassProperties<T>>();
-            compound.bounds_ = r.get<Aabb<T>>(), compound.radius_ = r.get<T>();
-            if (compound.children_.empty()) detail::report_invalid("restore_snapshot", "a compound without parts", 0.0);
-            check_compound(compound);
-            c = std::make_shared<const Compound<T>>(std::move(compound));
-        }
+        for (auto& c : compounds) c = read_compound(r, bytes.size());
         const std::uint64_t body_count = r.get<std::uint64_t>();
         if (body_count > bytes.size())
             detail::report_invalid("restore_snapshot", "body count runs past the buffer", static_cast<double>(body_count));
         out.bodies_.resize(static_cast<std::size_t>(body_count));
-        for (Body<T>& b : out.bodies_) {
-            b.alive_ = r.get_bool();
-            b.generation_ = r.get<std::uint32_t>();
-            if (!b.alive_) continue;
-            const std::uint32_t shape = r.get<std::uint32_t>(), compound = r.get<std::uint32_t>();
-            if (shape != ~std::uint32_t(0)) {
-                if (shape >= shapes.size()) detail::report_invalid("restore_snapshot", "a body refers to a missing shape", shape);
-                if (compound != ~std::uint32_t(0))
-                    detail::report_invalid("restore_snapshot", "a body refers to both a shape and a compound", compound);
-                b.set_geometry(shapes[shape], nullptr, nullptr);
-            } else {
-                if (compound >= compounds.size())
-                    detail::report_invalid("restore_snapshot", "a body refers to a missing compound", compound);
-                b.set_geometry(nullptr, compounds[compound], nullptr);
-            }
-            b.position_ = r.get<Vec3<T>>(), b.orientation_ = r.get<Quat<T>>();
-            b.linear_velocity_ = r.get<Vec3<T>>(), b.angular_velocity_ = r.get<Vec3<T>>();
-            b.force_ = r.get<Vec3<T>>(), b.torque_ = r.get<Vec3<T>>(), b.inertia_local_ = r.get<Mat3<T>>();
-            b.inverse_mass_ = r.get<T>(), b.material_ = r.get<Material<T>>();
-            b.linear_damping_ = r.get<T>(), b.angular_damping_ = r.get<T>(), b.gravity_scale_ = r.get<T>(),
-            b.sleep_time_ = r.get<T>(), b.density_ = r.get<T>();
-            b.rest_position_ = r.get<Vec3<T>>(), b.rest_orientation_ = r.get<Quat<T>>();
-            b.user_data_ = r.get<std::uint64_t>(), b.layer_ = r.get<std::uint32_t>(), b.mask_ = r.get<std::uint32_t>();
-            const std::uint8_t type = r.get<std::uint8_t>();
-            if (type > static_cast<std::uint8_t>(BodyType::dynamic))
-                detail::report_invalid("restore_snapshot", "a body's type is not a BodyType", type);
-            b.type_ = static_cast<BodyType>(type);
-            b.awake_ = r.get_bool(), b.allow_sleep_ = r.get_bool(), b.fast_ = r.get_bool(), b.sensor_ = r.get_bool();
-            b.isotropic_ = r.get_bool(), b.moved_ = r.get_bool();
-            b.enabled_ = r.get_bool();
-        }
+        for (Body<T>& b : out.bodies_) read_body(r, shapes, compounds, b);
         out.free_slots_ = r.get_vector<std::uint32_t>();
         out.bounds_ = r.get_vector<Aabb<T>>();
         out.previous_pose_ = r.get_vector<Transform<T>>();
