@@ -585,6 +585,9 @@ private:
     bool closes_within_step(const Contact<T>& c, T dt) const;
     bool within_slop(const Contact<T>& c) const;
     void prepare(T dt);
+    void solve_substep(int sub, T h, detail::SolvePass<T>& pass);
+    void prepare_solver_bodies(T h);
+    void prepare_contact_rows(T h);
     detail::ContactConstraint<T> contact_row(std::uint32_t m, const detail::Softness<T>& soft,
                                              const detail::Softness<T>& soft_static);
     static T twist_lever(Contact<T>& contact, T face_a, T face_b);
@@ -1954,7 +1957,15 @@ template <class T>
 void World<T>::prepare(T dt) {
     const T h = dt / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
     last_substep_ = h;
-    // Solver bodies: every awake dynamic or kinematic body; slot 0 stands for static ones.
+    prepare_solver_bodies(h);
+    joint_stage(JointStage::prepare, h);
+    prepare_contact_rows(h);
+}
+
+/// The solver bodies: every awake dynamic or kinematic body, in space order; slot 0 stands for
+/// static ones. h: the substep.
+template <class T>
+void World<T>::prepare_solver_bodies(T h) {
     solver_bodies_.assign(1, detail::SolverBody<T>{});
     solver_masses_.assign(1, detail::SolverMass<T>{});
     solver_slot_.assign(1, 0);
@@ -1991,10 +2002,12 @@ void World<T>::prepare(T dt) {
         }
     });
     stats_.awake_bodies = count;
+}
 
-    joint_stage(JointStage::prepare, h);
-
-    // Contact rows.
+/// The contact rows of the touching contacts with a body in the solver, coloured and packed into
+/// lanes. h: the substep.
+template <class T>
+void World<T>::prepare_contact_rows(T h) {
     const T contact_hertz = detail::capped_contact_hertz(settings_, h);
     using detail::Softness;
     const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
@@ -2261,50 +2274,7 @@ void World<T>::solve(T dt) {
     const T h = dt / static_cast<T>(substeps);
     detail::SolvePass<T> pass{
         T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
-    const auto movers = static_cast<std::uint32_t>(solver_bodies_.size() - 1);
-    for (int sub = 0; sub < substeps; ++sub) {
-        parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
-            for (std::uint32_t i = begin + 1; i <= end; ++i)
-                if (integration_[i].dynamic)
-                    detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
-        });
-        joint_stage(JointStage::turn_inertias, h);
-        if (!bouncing_rows_.empty()) wide_rows_.take_approach(solver_bodies_, h, tasks_.get());
-        if (settings_.warm_starting) {
-            joint_stage(JointStage::warm_start, h);
-            wide_rows_.warm_start(solver_bodies_, tasks_.get());
-        }
-        // The first substep relaxes longer: its warm start applies the last step's impulses, and
-        // where a load vanished between steps (a support released, a body removed) one sweep a
-        // substep sheds them too slowly along a stack; the bodies it held are pushed apart and fly
-        // off at a steady speed (docs/solver.md, "Releasing a load").
-        const int relax = soft && sub == 0 ? settings_.first_relax_iterations : settings_.relax_iterations;
-        pass.use_bias = true;
-        for (int it = 0; it < settings_.velocity_iterations; ++it) {
-            // The substep's last pass adds each point's impulse to its step total (for events
-            // and restitution), inside the solve so that each worker does it for its own rows.
-            pass.last_of_substep = relax == 0 && it + 1 == settings_.velocity_iterations;
-            // Joints after contacts: a limb's limit then answers the impulse its landing just took
-            // (before them, a ragdoll landed 4.5° past a cone at 8 substeps; docs/solver.md).
-            wide_rows_.solve(solver_bodies_, pass, tasks_.get());
-            joint_stage(JointStage::solve, h);
-        }
-        parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
-            for (std::uint32_t i = begin + 1; i <= end; ++i) detail::integrate_position(solver_bodies_[i], integration_[i], h);
-        });
-        joint_stage(JointStage::turn_inertias, h);
-        pass.use_bias = false;
-        // Joints relax in the last relax_iterations of these sweeps only: the first substep's extra
-        // sweeps are for stored contact impulses (with the joints in all of them, a door still
-        // swung at 0.024 rad/s off its stop; in the first of them, a ragdoll landed 4.0° past a cone).
-        const int joints_from = relax - settings_.relax_iterations;
-        for (int it = 0; it < relax; ++it) {
-            pass.last_of_substep = it + 1 == relax;
-            if (it >= joints_from) joint_stage(JointStage::relax, h);
-            wide_rows_.solve(solver_bodies_, pass, tasks_.get());
-        }
-        solver_bodies_[0] = detail::SolverBody<T>{};
-    }
+    for (int sub = 0; sub < substeps; ++sub) solve_substep(sub, h, pass);
     wide_rows_.unpack(constraints_, tasks_.get());
     rebound_cap_.before(constraints_, bouncing_rows_, joint_rows_, solver_bodies_, integration_, settings_.restitution_threshold);
     detail::apply_restitution(constraints_, bouncing_rows_, solver_bodies_, solver_masses_, settings_.restitution_threshold, h);
@@ -2316,6 +2286,55 @@ void World<T>::solve(T dt) {
         },
         h);
     joint_stage(JointStage::cap, h);
+}
+
+/// Substep `sub` of solve (h long): gravity and forces, warm start, the biased sweeps, the
+/// position update, then the relax sweeps.
+template <class T>
+void World<T>::solve_substep(int sub, T h, detail::SolvePass<T>& pass) {
+    const bool soft = settings_.solver == SolverMode::soft_step;
+    const auto movers = static_cast<std::uint32_t>(solver_bodies_.size() - 1);
+    parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t i = begin + 1; i <= end; ++i)
+            if (integration_[i].dynamic)
+                detail::integrate_velocity(solver_bodies_[i], integration_[i], h);  // kinematic: the user's
+    });
+    joint_stage(JointStage::turn_inertias, h);
+    if (!bouncing_rows_.empty()) wide_rows_.take_approach(solver_bodies_, h, tasks_.get());
+    if (settings_.warm_starting) {
+        joint_stage(JointStage::warm_start, h);
+        wide_rows_.warm_start(solver_bodies_, tasks_.get());
+    }
+    // The first substep relaxes longer: its warm start applies the last step's impulses, and
+    // where a load vanished between steps (a support released, a body removed) one sweep a
+    // substep sheds them too slowly along a stack; the bodies it held are pushed apart and fly
+    // off at a steady speed (docs/solver.md, "Releasing a load").
+    const int relax = soft && sub == 0 ? settings_.first_relax_iterations : settings_.relax_iterations;
+    pass.use_bias = true;
+    for (int it = 0; it < settings_.velocity_iterations; ++it) {
+        // The substep's last pass adds each point's impulse to its step total (for events
+        // and restitution), inside the solve so that each worker does it for its own rows.
+        pass.last_of_substep = relax == 0 && it + 1 == settings_.velocity_iterations;
+        // Joints after contacts: a limb's limit then answers the impulse its landing just took
+        // (before them, a ragdoll landed 4.5° past a cone at 8 substeps; docs/solver.md).
+        wide_rows_.solve(solver_bodies_, pass, tasks_.get());
+        joint_stage(JointStage::solve, h);
+    }
+    parallel_for(tasks_.get(), movers, integrate_range, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t i = begin + 1; i <= end; ++i) detail::integrate_position(solver_bodies_[i], integration_[i], h);
+    });
+    joint_stage(JointStage::turn_inertias, h);
+    pass.use_bias = false;
+    // Joints relax in the last relax_iterations of these sweeps only: the first substep's extra
+    // sweeps are for stored contact impulses (with the joints in all of them, a door still
+    // swung at 0.024 rad/s off its stop; in the first of them, a ragdoll landed 4.0° past a cone).
+    const int joints_from = relax - settings_.relax_iterations;
+    for (int it = 0; it < relax; ++it) {
+        pass.last_of_substep = it + 1 == relax;
+        if (it >= joints_from) joint_stage(JointStage::relax, h);
+        wide_rows_.solve(solver_bodies_, pass, tasks_.get());
+    }
+    solver_bodies_[0] = detail::SolverBody<T>{};
 }
 
 template <class T>
