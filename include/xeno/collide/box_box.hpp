@@ -19,41 +19,6 @@ namespace xeno {
 
 namespace detail {
 
-/// The best of the 9 edge-edge axes so far: index 3 i + j (A's axis i × B's axis j; −1: none
-/// beats `overlap`), its overlap and unit axis.
-template <class T>
-struct EdgeAxis {
-    int index = -1;
-    T overlap;
-    Vec3<T> axis;
-};
-
-/// The edge-edge axes of box_box_axis (A's frame; half extents a and b, B's rotation r, |r| + ε
-/// and offset t): `best` takes any axis shallower than best.overlap. False as soon as one
-/// separates the boxes by more than the margin.
-template <class T>
-bool least_edge_overlap(const Vec3<T>& a, const Vec3<T>& b, const Mat3<T>& r, const Mat3<T>& abs_r, const Vec3<T>& t, T margin,
-                        EdgeAxis<T>& best) {
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-            const Vec3<T> axis = cross(Vec3<T>::axis(i), r.column(j));
-            const T len = length(axis);
-            if (len < T(1e-5)) continue;  // parallel edges: the face axes cover them
-            const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            const T ra = a[i1] * abs_r[i2][j] + a[i2] * abs_r[i1][j];
-            const T rb = b[j1] * abs_r[i][j2] + b[j2] * abs_r[i][j1];
-            const T overlap = (ra + rb - std::abs(dot(t, axis))) / len + margin;
-            if (overlap < T(0)) return false;
-            if (overlap < best.overlap) {
-                best.overlap = overlap;
-                best.index = 3 * i + j;
-                best.axis = axis / len;
-            }
-        }
-    }
-    return true;
-}
-
 /// The points of an edge-edge contact along n with overlap h: the closest points of A's edge
 /// along its axis i through its support point along n and B's edge along its axis j through its
 /// support point along -n, put h apart along n around their middle, as for the other pairs.
@@ -153,13 +118,30 @@ bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& 
         }
     }
     const T slack = T(1e-3) * std::min(min_component(a), min_component(b));
-    EdgeAxis<T> edge;
-    edge.overlap = best - slack;
-    if (!least_edge_overlap(a, b, r, abs_r, t, margin, edge)) return false;
-    if (edge.index >= 0) {
-        n = dot(edge.axis, t) >= T(0) ? edge.axis : -edge.axis;
-        h = edge.overlap - margin;
-        edge_contact_points(md, n, h, edge.index / 3, edge.index % 3, point_a, point_b);
+    int best_edge = -1;
+    T best_edge_overlap = best - slack;
+    Vec3<T> best_edge_axis;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            const Vec3<T> axis = cross(Vec3<T>::axis(i), r.column(j));
+            const T len = length(axis);
+            if (len < T(1e-5)) continue;  // parallel edges: the face axes cover them
+            const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            const T ra = a[i1] * abs_r[i2][j] + a[i2] * abs_r[i1][j];
+            const T rb = b[j1] * abs_r[i][j2] + b[j2] * abs_r[i][j1];
+            const T overlap = (ra + rb - std::abs(dot(t, axis))) / len + margin;
+            if (overlap < T(0)) return false;
+            if (overlap < best_edge_overlap) {
+                best_edge_overlap = overlap;
+                best_edge = 3 * i + j;
+                best_edge_axis = axis / len;
+            }
+        }
+    }
+    if (best_edge >= 0) {
+        n = dot(best_edge_axis, t) >= T(0) ? best_edge_axis : -best_edge_axis;
+        h = best_edge_overlap - margin;
+        edge_contact_points(md, n, h, best_edge / 3, best_edge % 3, point_a, point_b);
         return true;
     }
     h = best - margin;

@@ -163,7 +163,7 @@ struct NormalGroup {
     Vec3<T> normal{};
     T deepest = -ScalarTraits<T>::infinity;
     std::uint32_t triangle = 0;
-    std::array<ManifoldPoint<T>, ClipPolygon<T>::capacity> points{};
+    ClipPoints<T> points;  ///< the first `count` set
     int count = 0;
 
     void add(const ContactManifold<T>& m, std::uint32_t tri, T size) {
@@ -180,7 +180,7 @@ struct NormalGroup {
                 seen = length_squared(points[static_cast<std::size_t>(j)].point_b - p.point_b) <= square(T(1e-4) * size);
             if (seen) continue;
             if (count == ClipPolygon<T>::capacity) reduce();
-            points[static_cast<std::size_t>(count++)] = p;
+            points.set(static_cast<std::size_t>(count++), p);
         }
     }
     /// Depths along the group's normal, then the four points that keep the deepest and span most.
