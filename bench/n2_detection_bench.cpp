@@ -235,28 +235,21 @@ void lanes_only(const Options& opt) {
     std::printf("load average at end: %s\n", load_average().c_str());
 }
 
-}  // namespace
+/// The sizes each part of the run measures (fewer with --quick).
+struct Sizes {
+    std::vector<std::size_t> table = {500, 1000, 1500, 2000, 2500, 3000, 3500};
+    std::vector<std::size_t> large = {10000, 100000};
+    std::size_t huge = 1000000;
+};
 
-int main(int argc, char** argv) {
-    const Options opt = parse(argc, argv);
-    if (opt.lanes) {
-        lanes_only(opt);
-        return 0;
-    }
-    if (!make_dir(opt.out)) {
-        std::fprintf(stderr, "xeno_n2_bench: cannot create %s\n", opt.out.c_str());
-        return 1;
-    }
-    std::vector<std::size_t> table_ns = {500, 1000, 1500, 2000, 2500, 3000, 3500};
-    std::vector<std::size_t> large_ns = {10000, 100000};
-    std::size_t huge_n = 1000000;
-    if (opt.quick) {
-        table_ns = {200, 500, 1000};
-        large_ns = {3000};
-        huge_n = 20000;
-    }
-    auto allowed = [&](std::size_t n) { return n <= opt.max_bodies; };
+/// What the run measured, for the files it writes.
+struct Results {
+    std::vector<Row> rows;
+    std::vector<Detail> details;
+};
 
+/// The machine, the build, the load and the scenes, before any timing.
+void print_header(const Options& opt) {
     std::printf("xeno N² detection benchmark (issue: broad phase)\n");
     std::printf("machine: %s, %u hardware threads; one thread unless stated; double precision\n", cpu_model().c_str(),
                 std::thread::hardware_concurrency());
@@ -267,8 +260,6 @@ int main(int argc, char** argv) {
 #endif
     std::printf("load average at start: %s\n", load_average().c_str());
     std::printf("seed: %llu\n", static_cast<unsigned long long>(opt.seed));
-    const auto run_start = std::chrono::steady_clock::now();
-    const std::clock_t cpu_start = std::clock();
     std::printf("scene: %s\n", make_box_scene<Real>(1, opt.seed).description.c_str());
     std::printf("mixed: %s\n", make_mixed_scene<Real>(1, opt.seed).description.c_str());
     std::printf(
@@ -278,20 +269,20 @@ int main(int argc, char** argv) {
         "      for %d pairs at once in SIMD lanes (EarlyOut), MPR on the survivors; sap, tree and brute_bounds\n"
         "      run that test on their pairs before collide(); rows: best of up to 5 cold passes\n\n",
         EarlyOut<Real>::width);
+}
 
-    std::vector<Row> rows;
-    std::vector<Detail> details;
-
-    // 1. The table: every strategy on the box and the mixed scene.
+/// 1. The table: every strategy on the box and the mixed scene, best of up to 5 cold passes; a
+/// quadratic strategy past --time-limit is extrapolated, not run.
+void strategy_table(const Options& opt, const Sizes& sizes, Results& out) {
     for (const bool mixed : {false, true}) {
         std::printf("%s scene\n", mixed ? "mixed-shape" : "box");
         std::printf("%9s  %-20s %12s %9s %11s %10s %10s\n", "bodies", "strategy", "seconds", "contacts", "broad pairs",
                     "thesis s", "speed-up");
         std::map<Strategy, std::pair<std::size_t, double>> last;  // for the N² extrapolation
-        std::vector<std::size_t> ns = table_ns;
-        ns.insert(ns.end(), large_ns.begin(), large_ns.end());
+        std::vector<std::size_t> ns = sizes.table;
+        ns.insert(ns.end(), sizes.large.begin(), sizes.large.end());
         for (const std::size_t n : ns) {
-            if (!allowed(n)) continue;
+            if (n > opt.max_bodies) continue;
             const Scene<Real> scene = mixed ? make_mixed_scene<Real>(n, opt.seed) : make_box_scene<Real>(n, opt.seed);
             for (const Strategy s : kStrategies) {
                 const std::string name = std::string(strategy_name(s)) + (mixed ? "_mixed" : "");
@@ -311,7 +302,7 @@ int main(int argc, char** argv) {
                     row.pairs = r.contacts;
                     row.broad_pairs = r.broad_pairs;
                     last[s] = {n, r.seconds};
-                    rows.push_back(row);
+                    out.rows.push_back(row);
                 }
                 const double thesis = thesis_seconds(n);
                 char thesis_buf[32] = "-", speedup_buf[32] = "-";
@@ -330,15 +321,17 @@ int main(int argc, char** argv) {
         }
         std::printf("\n");
     }
+}
 
-    // 2. Cold and warm full passes for sap and tree at the large sizes.
+/// 2. Cold and warm full passes for sap and tree at the large sizes.
+void cold_warm_table(const Options& opt, const Sizes& sizes, Results& out) {
     std::printf(
         "cold (first pass, fresh broad phase; best of 3) and warm (after every body moved <= 1 cm and\n"
         "turned <= 0.01 rad; best of 5 frames) full passes, box scene unless stated\n");
     std::printf("%9s  %-6s %-6s %12s %12s %12s %12s %9s\n", "bodies", "scene", "strat", "cold", "cold broad", "warm",
                 "warm broad", "contacts");
-    for (const std::size_t n : large_ns) {
-        if (!allowed(n)) continue;
+    for (const std::size_t n : sizes.large) {
+        if (n > opt.max_bodies) continue;
         for (const bool mixed : {false, true}) {
             const Scene<Real> scene = mixed ? make_mixed_scene<Real>(n, opt.seed) : make_box_scene<Real>(n, opt.seed);
             for (const Strategy s : {Strategy::sap, Strategy::tree}) {
@@ -347,10 +340,10 @@ int main(int argc, char** argv) {
                 std::printf("%9zu  %-6s %-6s %12s %12s %12s %12s %9zu\n", n, sc, strategy_name(s),
                             format_seconds(best(cw.cold)).c_str(), format_seconds(best(cw.cold_broad)).c_str(),
                             format_seconds(best(cw.warm)).c_str(), format_seconds(best(cw.warm_broad)).c_str(), cw.last.contacts);
-                details.push_back({sc, n, strategy_name(s), "cold", best(cw.cold), cw.last.contacts});
-                details.push_back({sc, n, strategy_name(s), "warm", best(cw.warm), cw.last.contacts});
-                details.push_back({sc, n, strategy_name(s), "cold_broad", best(cw.cold_broad), cw.last.broad_pairs});
-                details.push_back({sc, n, strategy_name(s), "warm_broad", best(cw.warm_broad), cw.last.broad_pairs});
+                out.details.push_back({sc, n, strategy_name(s), "cold", best(cw.cold), cw.last.contacts});
+                out.details.push_back({sc, n, strategy_name(s), "warm", best(cw.warm), cw.last.contacts});
+                out.details.push_back({sc, n, strategy_name(s), "cold_broad", best(cw.cold_broad), cw.last.broad_pairs});
+                out.details.push_back({sc, n, strategy_name(s), "warm_broad", best(cw.warm_broad), cw.last.broad_pairs});
                 std::fflush(stdout);
             }
             // The same sweep and prune pass without the early-out in lanes, for comparison.
@@ -359,132 +352,160 @@ int main(int argc, char** argv) {
                         "sap-", format_seconds(best(plain.cold)).c_str(), format_seconds(best(plain.cold_broad)).c_str(),
                         format_seconds(best(plain.warm)).c_str(), format_seconds(best(plain.warm_broad)).c_str(),
                         plain.last.contacts);
-            details.push_back({mixed ? "mixed" : "boxes", n, "sap_no_early_out", "warm", best(plain.warm), plain.last.contacts});
+            out.details.push_back(
+                {mixed ? "mixed" : "boxes", n, "sap_no_early_out", "warm", best(plain.warm), plain.last.contacts});
         }
     }
     std::printf("\n");
+}
 
-    // 3. The broad phase alone at 1,000,000 (stopped when a cold pass takes over a minute).
-    if (allowed(huge_n)) {
-        std::printf("broad phase alone (world boxes + pairs), %zu boxes\n", huge_n);
-        const Scene<Real> scene = make_box_scene<Real>(huge_n, opt.seed);
+/// 3. The broad phase alone at 1,000,000 boxes (stopped when a cold pass takes over a minute).
+void huge_broad_phase(const Options& opt, const Sizes& sizes, Results& out) {
+    if (sizes.huge > opt.max_bodies) return;
+    std::printf("broad phase alone (world boxes + pairs), %zu boxes\n", sizes.huge);
+    const Scene<Real> scene = make_box_scene<Real>(sizes.huge, opt.seed);
+    for (const Strategy s : {Strategy::sap, Strategy::tree}) {
+        Detector<Real> probe(s);
+        const PassResult first = probe.broad_only(scene);
+        if (first.seconds > 60) {
+            std::printf("  %-5s cold %s: over a minute, not repeated\n", strategy_name(s), format_seconds(first.seconds).c_str());
+            out.details.push_back({"boxes", sizes.huge, strategy_name(s), "broad_cold", first.seconds, first.broad_pairs});
+            continue;
+        }
+        const ColdWarm cw = cold_warm(s, scene, true, 3);
+        std::printf("  %-5s cold %s (best of %zu), warm %s (best of %zu), %zu box pairs\n", strategy_name(s),
+                    format_seconds(best(cw.cold)).c_str(), cw.cold.size(), format_seconds(best(cw.warm)).c_str(), cw.warm.size(),
+                    cw.last.broad_pairs);
+        out.details.push_back({"boxes", sizes.huge, strategy_name(s), "broad_cold", best(cw.cold), cw.last.broad_pairs});
+        out.details.push_back({"boxes", sizes.huge, strategy_name(s), "broad_warm", best(cw.warm), cw.last.broad_pairs});
+        std::fflush(stdout);
+    }
+    std::printf("\n");
+}
+
+/// 4. Precision: the thesis's brute force in float as well (the table is double).
+void float_brute_force(const Options& opt, const Sizes& sizes, Results& out) {
+    const std::size_t nb = std::min<std::size_t>(sizes.table.back(), opt.max_bodies);
+    const Scene<float> scene = make_box_scene<float>(nb, opt.seed);
+    for (const Strategy strategy : {Strategy::brute, Strategy::brute_lanes}) {
+        double best = 1e30;
+        std::size_t contacts = 0;
+        for (int rep = 0; rep < 3; ++rep) {
+            Detector<float> d(strategy);
+            const PassResult r = d.pass(scene);
+            best = std::min(best, r.seconds);
+            contacts = r.contacts;
+        }
+        const double thesis = thesis_seconds(nb);
+        std::printf("%s in float (%d lanes), %zu boxes: %s, %zu contacts", strategy_name(strategy),
+                    strategy == Strategy::brute ? 1 : EarlyOut<float>::width, nb, format_seconds(best).c_str(), contacts);
+        if (!std::isnan(thesis)) std::printf(", %.0fx the thesis", thesis / best);
+        std::printf("\n");
+        out.details.push_back({"boxes_float", nb, strategy_name(strategy), "cold", best, contacts});
+    }
+    std::printf("\n");
+}
+
+/// 5. The parallel narrow phase: 1 thread against --threads through the default parallel-for.
+void parallel_rows(const Options& opt, const Sizes& sizes, Results& out) {
+    if (opt.threads <= 1) return;
+    std::printf("parallel narrow phase (xeno::ThreadPool): 1 vs %u threads, best of 3 (sap: of 5 warm frames)\n", opt.threads);
+    const std::size_t nb = std::min<std::size_t>(sizes.table.back(), opt.max_bodies);
+    const Scene<Real> scene = make_box_scene<Real>(nb, opt.seed);
+    for (const unsigned t : {1u, opt.threads}) {
+        double best = 1e30;
+        for (int rep = 0; rep < 3; ++rep) {
+            Detector<Real> d(Strategy::brute, thread_parallel_for(t));
+            best = std::min(best, d.pass(scene).seconds);
+        }
+        std::printf("  brute %zu boxes, %u thread(s): %s\n", nb, t, format_seconds(best).c_str());
+        out.details.push_back({"boxes", nb, "brute", "threads" + std::to_string(t), best, 0});
+    }
+    const std::size_t ns = std::min<std::size_t>(sizes.large.back(), opt.max_bodies);
+    const Scene<Real> big = make_box_scene<Real>(ns, opt.seed);
+    for (const bool mixed : {false, true}) {
+        const Scene<Real> scene_s = mixed ? make_mixed_scene<Real>(ns, opt.seed) : big;
+        for (const unsigned t : {1u, opt.threads}) {
+            const ColdWarm cw = cold_warm(Strategy::sap, scene_s, false, 5, thread_parallel_for(t));
+            std::vector<double> narrow;
+            for (std::size_t k = 0; k < cw.warm.size(); ++k) narrow.push_back(cw.warm[k] - cw.warm_broad[k]);
+            const char* sc = mixed ? "mixed" : "boxes";
+            std::printf("  sap %zu %s warm, %u thread(s): narrow phase %s, whole pass %s\n", ns, sc, t,
+                        format_seconds(best(narrow)).c_str(), format_seconds(best(cw.warm)).c_str());
+            out.details.push_back({sc, ns, "sap", "narrow_threads" + std::to_string(t), best(narrow), cw.last.contacts});
+            out.details.push_back({sc, ns, "sap", "warm_threads" + std::to_string(t), best(cw.warm), cw.last.contacts});
+        }
+    }
+    std::printf("\n");
+}
+
+/// 6. Does the tree win anywhere? Warm passes on other distributions.
+void tree_against_sap(const Options& opt, const Sizes& sizes, Results& out) {
+    const std::size_t n = std::min<std::size_t>(sizes.large.back(), opt.max_bodies);
+    std::printf("tree against sweep and prune, %zu bodies: warm full pass / warm broad only / cold full pass (best of 5, 5, 3)\n",
+                n);
+    struct Workload {
+        const char* name;
+        Scene<Real> scene;
+    };
+    std::vector<Workload> loads;
+    loads.push_back({"uniform", make_box_scene<Real>(n, opt.seed)});
+    loads.push_back({"clustered", make_clustered_scene<Real>(n, 50, opt.seed)});
+    loads.push_back({"few_huge", make_few_huge_scene<Real>(n, opt.seed)});
+    loads.push_back({"layer", make_layer_scene<Real>(n, opt.seed)});
+    for (const Workload& w : loads) {
+        std::printf("  %-10s %s\n", w.name, w.scene.description.c_str());
         for (const Strategy s : {Strategy::sap, Strategy::tree}) {
-            Detector<Real> probe(s);
-            const PassResult first = probe.broad_only(scene);
-            if (first.seconds > 60) {
-                std::printf("  %-5s cold %s: over a minute, not repeated\n", strategy_name(s),
-                            format_seconds(first.seconds).c_str());
-                details.push_back({"boxes", huge_n, strategy_name(s), "broad_cold", first.seconds, first.broad_pairs});
-                continue;
-            }
-            const ColdWarm cw = cold_warm(s, scene, true, 3);
-            std::printf("  %-5s cold %s (best of %zu), warm %s (best of %zu), %zu box pairs\n", strategy_name(s),
-                        format_seconds(best(cw.cold)).c_str(), cw.cold.size(), format_seconds(best(cw.warm)).c_str(),
-                        cw.warm.size(), cw.last.broad_pairs);
-            details.push_back({"boxes", huge_n, strategy_name(s), "broad_cold", best(cw.cold), cw.last.broad_pairs});
-            details.push_back({"boxes", huge_n, strategy_name(s), "broad_warm", best(cw.warm), cw.last.broad_pairs});
+            const ColdWarm full = cold_warm(s, w.scene, false);
+            const ColdWarm broad = cold_warm(s, w.scene, true);
+            std::printf("    %-5s %12s %12s %12s   %zu box pairs, %zu contacts\n", strategy_name(s),
+                        format_seconds(best(full.warm)).c_str(), format_seconds(best(broad.warm)).c_str(),
+                        format_seconds(best(full.cold)).c_str(), full.last.broad_pairs, full.last.contacts);
+            out.details.push_back({w.name, n, strategy_name(s), "warm", best(full.warm), full.last.contacts});
+            out.details.push_back({w.name, n, strategy_name(s), "broad_warm", best(broad.warm), broad.last.broad_pairs});
+            out.details.push_back({w.name, n, strategy_name(s), "cold", best(full.cold), full.last.contacts});
             std::fflush(stdout);
         }
-        std::printf("\n");
     }
+    std::printf("\n");
+}
 
-    // 4. Precision: the thesis's brute force in float as well (the table is double).
-    {
-        const std::size_t nb = std::min<std::size_t>(table_ns.back(), opt.max_bodies);
-        const Scene<float> scene = make_box_scene<float>(nb, opt.seed);
-        for (const Strategy strategy : {Strategy::brute, Strategy::brute_lanes}) {
-            double best = 1e30;
-            std::size_t contacts = 0;
-            for (int rep = 0; rep < 3; ++rep) {
-                Detector<float> d(strategy);
-                const PassResult r = d.pass(scene);
-                best = std::min(best, r.seconds);
-                contacts = r.contacts;
-            }
-            const double thesis = thesis_seconds(nb);
-            std::printf("%s in float (%d lanes), %zu boxes: %s, %zu contacts", strategy_name(strategy),
-                        strategy == Strategy::brute ? 1 : EarlyOut<float>::width, nb, format_seconds(best).c_str(), contacts);
-            if (!std::isnan(thesis)) std::printf(", %.0fx the thesis", thesis / best);
-            std::printf("\n");
-            details.push_back({"boxes_float", nb, strategy_name(strategy), "cold", best, contacts});
-        }
-        std::printf("\n");
+/// The gnuplot script that draws n2.png from n2_plot.dat (its columns after bodies and thesis).
+void write_plot_script(const Options& opt, const std::vector<std::string>& columns) {
+    std::ofstream gp(opt.out + "/n2_plot.gp");
+    gp << "# gnuplot script written by xeno_n2_bench: gnuplot n2_plot.gp (run in this folder)\n"
+          "set terminal pngcairo size 960,640 noenhanced font ',11'\n"
+          "set output 'n2.png'\n"
+          "set datafile missing 'NaN'\n"
+          "set logscale xy\n"
+          "set format x '%g'\n"
+          "set format y '%g'\n"
+          "set xlabel 'bodies'\n"
+          "set ylabel 'seconds per detection pass'\n"
+          "set title 'One detection pass: the thesis (Quadro 26, brute-force XenoCollide) and xeno, one thread'\n"
+          "set key left top\n"
+          "set grid\n"
+          "plot 'n2_plot.dat' using 1:2 with linespoints lw 2 pt 7 lc rgb 'black' title 'thesis (brute)'";
+    const char* colours[] = {"#d62728", "#9467bd", "#ff7f0e", "#1f77b4", "#2ca02c"};
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+        const bool mixed = k >= 5;
+        gp << ", \\\n     '' using 1:" << (k + 3) << " with linespoints lw 2 pt " << (mixed ? 6 : 5) << " dt " << (mixed ? 2 : 1)
+           << " lc rgb '" << colours[k % 5] << "' title 'xeno " << columns[k] << "'";
     }
+    gp << "\n";
+}
 
-    // 5. The parallel narrow phase: 1 thread against --threads through the default parallel-for.
-    if (opt.threads > 1) {
-        std::printf("parallel narrow phase (xeno::ThreadPool): 1 vs %u threads, best of 3 (sap: of 5 warm frames)\n",
-                    opt.threads);
-        const std::size_t nb = std::min<std::size_t>(table_ns.back(), opt.max_bodies);
-        const Scene<Real> scene = make_box_scene<Real>(nb, opt.seed);
-        for (const unsigned t : {1u, opt.threads}) {
-            double best = 1e30;
-            for (int rep = 0; rep < 3; ++rep) {
-                Detector<Real> d(Strategy::brute, thread_parallel_for(t));
-                best = std::min(best, d.pass(scene).seconds);
-            }
-            std::printf("  brute %zu boxes, %u thread(s): %s\n", nb, t, format_seconds(best).c_str());
-            details.push_back({"boxes", nb, "brute", "threads" + std::to_string(t), best, 0});
-        }
-        const std::size_t ns = std::min<std::size_t>(large_ns.back(), opt.max_bodies);
-        const Scene<Real> big = make_box_scene<Real>(ns, opt.seed);
-        for (const bool mixed : {false, true}) {
-            const Scene<Real> scene_s = mixed ? make_mixed_scene<Real>(ns, opt.seed) : big;
-            for (const unsigned t : {1u, opt.threads}) {
-                const ColdWarm cw = cold_warm(Strategy::sap, scene_s, false, 5, thread_parallel_for(t));
-                std::vector<double> narrow;
-                for (std::size_t k = 0; k < cw.warm.size(); ++k) narrow.push_back(cw.warm[k] - cw.warm_broad[k]);
-                const char* sc = mixed ? "mixed" : "boxes";
-                std::printf("  sap %zu %s warm, %u thread(s): narrow phase %s, whole pass %s\n", ns, sc, t,
-                            format_seconds(best(narrow)).c_str(), format_seconds(best(cw.warm)).c_str());
-                details.push_back({sc, ns, "sap", "narrow_threads" + std::to_string(t), best(narrow), cw.last.contacts});
-                details.push_back({sc, ns, "sap", "warm_threads" + std::to_string(t), best(cw.warm), cw.last.contacts});
-            }
-        }
-        std::printf("\n");
-    }
-
-    // 6. Does the tree win anywhere? Warm passes on other distributions.
-    {
-        const std::size_t n = std::min<std::size_t>(large_ns.back(), opt.max_bodies);
-        std::printf(
-            "tree against sweep and prune, %zu bodies: warm full pass / warm broad only / cold full pass (best of 5, 5, 3)\n", n);
-        struct Workload {
-            const char* name;
-            Scene<Real> scene;
-        };
-        std::vector<Workload> loads;
-        loads.push_back({"uniform", make_box_scene<Real>(n, opt.seed)});
-        loads.push_back({"clustered", make_clustered_scene<Real>(n, 50, opt.seed)});
-        loads.push_back({"few_huge", make_few_huge_scene<Real>(n, opt.seed)});
-        loads.push_back({"layer", make_layer_scene<Real>(n, opt.seed)});
-        for (const Workload& w : loads) {
-            std::printf("  %-10s %s\n", w.name, w.scene.description.c_str());
-            for (const Strategy s : {Strategy::sap, Strategy::tree}) {
-                const ColdWarm full = cold_warm(s, w.scene, false);
-                const ColdWarm broad = cold_warm(s, w.scene, true);
-                std::printf("    %-5s %12s %12s %12s   %zu box pairs, %zu contacts\n", strategy_name(s),
-                            format_seconds(best(full.warm)).c_str(), format_seconds(best(broad.warm)).c_str(),
-                            format_seconds(best(full.cold)).c_str(), full.last.broad_pairs, full.last.contacts);
-                details.push_back({w.name, n, strategy_name(s), "warm", best(full.warm), full.last.contacts});
-                details.push_back({w.name, n, strategy_name(s), "broad_warm", best(broad.warm), broad.last.broad_pairs});
-                details.push_back({w.name, n, strategy_name(s), "cold", best(full.cold), full.last.contacts});
-                std::fflush(stdout);
-            }
-        }
-        std::printf("\n");
-    }
-
-    // 7. Files.
+/// 7. The files: the table and the details as CSV, and the plot's data and gnuplot script.
+void write_files(const Options& opt, const Results& out) {
     {
         std::ofstream csv(opt.out + "/n2.csv");
         csv << "bodies,strategy,seconds,pairs\n";
-        for (const Row& r : rows) csv << r.bodies << ',' << r.strategy << ',' << r.seconds << ',' << r.pairs << '\n';
+        for (const Row& r : out.rows) csv << r.bodies << ',' << r.strategy << ',' << r.seconds << ',' << r.pairs << '\n';
     }
     {
         std::ofstream csv(opt.out + "/n2_details.csv");
         csv << "scene,bodies,strategy,phase,seconds,pairs\n";
-        for (const Detail& d : details)
+        for (const Detail& d : out.details)
             csv << d.scene << ',' << d.bodies << ',' << d.strategy << ',' << d.phase << ',' << d.seconds << ',' << d.pairs
                 << '\n';
     }
@@ -497,51 +518,25 @@ int main(int argc, char** argv) {
         for (const std::string& c : columns) dat << ' ' << c;
         dat << "\n# seconds per detection pass; NaN = not measured\n";
         std::vector<std::size_t> ns;
-        for (const Row& r : rows) ns.push_back(r.bodies);
+        for (const Row& r : out.rows) ns.push_back(r.bodies);
         std::sort(ns.begin(), ns.end());
         ns.erase(std::unique(ns.begin(), ns.end()), ns.end());
         for (const std::size_t n : ns) {
             dat << n << ' ' << thesis_seconds(n);
             for (const std::string& c : columns) {
                 double v = std::nan("");
-                for (const Row& r : rows)
+                for (const Row& r : out.rows)
                     if (r.bodies == n && r.strategy == c) v = r.seconds;
                 dat << ' ' << v;
             }
             dat << '\n';
         }
     }
-    {
-        std::ofstream gp(opt.out + "/n2_plot.gp");
-        gp << "# gnuplot script written by xeno_n2_bench: gnuplot n2_plot.gp (run in this folder)\n"
-              "set terminal pngcairo size 960,640 noenhanced font ',11'\n"
-              "set output 'n2.png'\n"
-              "set datafile missing 'NaN'\n"
-              "set logscale xy\n"
-              "set format x '%g'\n"
-              "set format y '%g'\n"
-              "set xlabel 'bodies'\n"
-              "set ylabel 'seconds per detection pass'\n"
-              "set title 'One detection pass: the thesis (Quadro 26, brute-force XenoCollide) and xeno, one thread'\n"
-              "set key left top\n"
-              "set grid\n"
-              "plot 'n2_plot.dat' using 1:2 with linespoints lw 2 pt 7 lc rgb 'black' title 'thesis (brute)'";
-        const char* colours[] = {"#d62728", "#9467bd", "#ff7f0e", "#1f77b4", "#2ca02c"};
-        for (std::size_t k = 0; k < columns.size(); ++k) {
-            const bool mixed = k >= 5;
-            gp << ", \\\n     '' using 1:" << (k + 3) << " with linespoints lw 2 pt " << (mixed ? 6 : 5) << " dt "
-               << (mixed ? 2 : 1) << " lc rgb '" << colours[k % 5] << "' title 'xeno " << columns[k] << "'";
-        }
-        gp << "\n";
-    }
-    const double wall = seconds_since(run_start);
-    const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    std::printf(
-        "run: %.1f s wall, %.1f s CPU (this process); load average at end: %s\n"
-        "(CPU well under wall in single-threaded sections means other jobs shared the cores)\n",
-        wall, cpu, load_average().c_str());
-    std::printf("wrote %s/n2.csv, %s/n2_details.csv, %s/n2_plot.dat, %s/n2_plot.gp\n", opt.out.c_str(), opt.out.c_str(),
-                opt.out.c_str(), opt.out.c_str());
+    write_plot_script(opt, columns);
+}
+
+/// n2.png from the gnuplot script, when gnuplot is installed.
+void plot(const Options& opt) {
     if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
         const std::string cd = "cd " + shell_quote(opt.out) + " && ";
         bool plotted = std::system((cd + "gnuplot n2_plot.gp 2>/dev/null").c_str()) == 0;
@@ -555,5 +550,41 @@ int main(int argc, char** argv) {
     } else {
         std::printf("gnuplot not on PATH: no n2.png (scripts/setup.sh main installs gnuplot-nox)\n");
     }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Options opt = parse(argc, argv);
+    if (opt.lanes) {
+        lanes_only(opt);
+        return 0;
+    }
+    if (!make_dir(opt.out)) {
+        std::fprintf(stderr, "xeno_n2_bench: cannot create %s\n", opt.out.c_str());
+        return 1;
+    }
+    Sizes sizes;
+    if (opt.quick) sizes = {{200, 500, 1000}, {3000}, 20000};
+    const auto run_start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
+    print_header(opt);
+    Results out;
+    strategy_table(opt, sizes, out);
+    cold_warm_table(opt, sizes, out);
+    huge_broad_phase(opt, sizes, out);
+    float_brute_force(opt, sizes, out);
+    parallel_rows(opt, sizes, out);
+    tree_against_sap(opt, sizes, out);
+    write_files(opt, out);
+    const double wall = seconds_since(run_start);
+    const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    std::printf(
+        "run: %.1f s wall, %.1f s CPU (this process); load average at end: %s\n"
+        "(CPU well under wall in single-threaded sections means other jobs shared the cores)\n",
+        wall, cpu, load_average().c_str());
+    std::printf("wrote %s/n2.csv, %s/n2_details.csv, %s/n2_plot.dat, %s/n2_plot.gp\n", opt.out.c_str(), opt.out.c_str(),
+                opt.out.c_str(), opt.out.c_str());
+    plot(opt);
     return 0;
 }
