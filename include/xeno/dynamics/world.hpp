@@ -576,7 +576,7 @@ private:
     /// overflows is capped like any other), for boxes and margins that must stay finite.
     T travel_speed(const Body<T>& b) const { return std::min(length(b.linear_velocity_), speed_limit(b)); }
     detail::BodyIntegration<T> integration_constants(const Body<T>& b, const detail::SolverMass<T>& s, T h) const;
-    void update_bounds(T dt);
+    void keep_poses_and_update_bounds(T dt);
     void narrow_phase(T dt);
     void classify_pairs(T dt);
     void collide_on_workers(T dt);
@@ -689,13 +689,13 @@ private:
     T accumulator_{};
     T last_substep_{};  ///< s: the last step's substep, for joint_reaction
     // Scratch kept between steps so a settled step allocates nothing.
-    std::vector<Contact<T>> next_contacts_;          ///< narrow phase output, swapped with contacts_
-    std::vector<PairWork> pair_work_;                ///< per broad-phase pair (narrow phase)
-    EarlyOut<T> early_out_;                          ///< each convex body's rounded box in the world (update_bounds)
-    std::vector<std::uint32_t> early_jobs_;          ///< pairs of kind collided, for the early-out
-    MeshStage mesh_stage_;                           ///< set by the first mesh body (bind_mesh_pairs)
-    MeshManifolds mesh_manifolds_;                   ///< one worker: a mesh pair's manifolds (narrow phase)
-    std::vector<std::uint32_t> mesh_jobs_;           ///< several workers: the pairs of kind mesh, in pair order
+    std::vector<Contact<T>> next_contacts_;  ///< narrow phase output, swapped with contacts_
+    std::vector<PairWork> pair_work_;        ///< per broad-phase pair (narrow phase)
+    EarlyOut<T> early_out_;                  ///< each convex body's rounded box in the world (keep_poses_and_update_bounds)
+    std::vector<std::uint32_t> early_jobs_;  ///< pairs of kind collided, for the early-out
+    MeshStage mesh_stage_;                   ///< set by the first mesh body (bind_mesh_pairs)
+    MeshManifolds mesh_manifolds_;           ///< one worker: a mesh pair's manifolds (narrow phase)
+    std::vector<std::uint32_t> mesh_jobs_;   ///< several workers: the pairs of kind mesh, in pair order
     std::vector<MeshManifolds> mesh_job_manifolds_;  ///< several workers: the manifolds of each of mesh_jobs_
     std::vector<std::uint8_t> old_taken_;            ///< last step's contacts of a mesh pair already matched (pass 3)
     std::vector<std::uint32_t> row_contacts_;        ///< per contact row: its contact (prepare)
@@ -989,7 +989,7 @@ void World<T>::step(T dt) {
         seconds = std::chrono::duration<double>(now - mark).count();
         mark = now;
     };
-    update_bounds(dt);  // (and keeps each body's pose before the step in previous_pose_)
+    keep_poses_and_update_bounds(dt);
     lap(stats_.seconds.bounds);
     switch (settings_.broad_phase) {
         case BroadPhaseKind::brute_force: brute_force_pairs(bounds_, pairs_); break;
@@ -1206,7 +1206,7 @@ void World<T>::report_events() {
 }
 
 template <class T>
-void World<T>::update_bounds(T dt) {
+void World<T>::keep_poses_and_update_bounds(T dt) {
     // Fattened by the speculative distance and by the distance the body can travel this step,
     // so contacts exist before the bodies meet. The early-out's bound of each convex body is
     // placed here too: once per body, not per pair.
