@@ -604,6 +604,8 @@ private:
     void finish();
     void discard_overflowed_solve();
     void update_sleep(T dt);
+    void run_sleep_clocks(T dt);
+    void keep_moving_islands_awake();
     bool sliding(const Contact<T>& c) const;
     void update_query_tree();
     void rebuild_query_tree();
@@ -2449,15 +2451,27 @@ void World<T>::update_sleep(T dt) {
     };
     if (std::none_of(bodies_.begin(), bodies_.end(), awake_dynamic)) return;  // no clock to run
     build_islands();
-    auto find = [&](std::uint32_t slot) { return island_root(slot); };
-    // A body's sleep clock runs while it is slow or stays within `reach` of its pose when the
-    // clock started (Body::distance_from_rest); an island sleeps when all its clocks passed sleep_time and
-    // none refuses to sleep or touches a moving kinematic body.
+    run_sleep_clocks(dt);
+    keep_moving_islands_awake();
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+        Body<T>& b = bodies_[i];
+        if (!awake_dynamic(b) || !(island_sleep_time_[island_root(i)] >= settings_.sleep_time)) continue;
+        b.awake_ = false;
+        b.linear_velocity_ = Vec3<T>::zero();
+        b.angular_velocity_ = Vec3<T>::zero();
+    }
+}
+
+/// Each awake dynamic body's sleep clock, and in island_sleep_time_ (by island root) the least
+/// clock of each island. A body's clock runs while it is slow or stays within `reach` of its pose
+/// when the clock started (Body::distance_from_rest); an island sleeps when all its clocks passed
+/// sleep_time and none refuses to sleep or touches a moving kinematic body.
+template <class T>
+void World<T>::run_sleep_clocks(T dt) {
     const T lin_sq = settings_.sleep_linear_speed * settings_.sleep_linear_speed;
     const T ang_sq = settings_.sleep_angular_speed * settings_.sleep_angular_speed;
     const T reach = settings_.sleep_linear_speed * settings_.sleep_time;
-    std::vector<T>& island_min = island_sleep_time_;
-    island_min.assign(bodies_.size(), ScalarTraits<T>::infinity);
+    island_sleep_time_.assign(bodies_.size(), ScalarTraits<T>::infinity);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         Body<T>& b = bodies_[i];
         if (!b.alive_ || !b.enabled_ || b.type_ != BodyType::dynamic || !b.awake_) continue;
@@ -2468,34 +2482,31 @@ void World<T>::update_sleep(T dt) {
         // face, at 5 cm/s and 0.24 rad/s when it slept at full rate) gets time to come to rest.
         const T rate = slow ? T(1) : b.distance_from_rest() <= reach ? T(0.25) : T(0);
         b.sleep_time_ = (rate > T(0) && b.allow_sleep_) ? b.sleep_time_ + rate * dt : T(0);
-        const std::uint32_t root = find(i);
-        island_min[root] = std::min(island_min[root], b.sleep_time_);
+        const std::uint32_t root = island_root(i);
+        island_sleep_time_[root] = std::min(island_sleep_time_[root], b.sleep_time_);
     }
-    // An island that slides (World::sliding) or touches a moving kinematic body stays awake. The
-    // slide is looked at only where an awake island would otherwise sleep now, rarely a step.
+}
+
+/// An island that slides (World::sliding) or touches a moving kinematic body stays awake: its
+/// least clock is set back to 0. The slide is looked at only where an awake island would
+/// otherwise sleep now, rarely a step.
+template <class T>
+void World<T>::keep_moving_islands_awake() {
+    std::vector<T>& island_min = island_sleep_time_;
     const auto would_sleep = [&](std::uint32_t i) {
         const Body<T>& b = bodies_[i];
-        return b.type_ == BodyType::dynamic && b.awake_ && island_min[find(i)] >= settings_.sleep_time;
+        return b.type_ == BodyType::dynamic && b.awake_ && island_min[island_root(i)] >= settings_.sleep_time;
     };
     for (const Contact<T>& c : contacts_) {
         if (!c.touching) continue;
         if ((would_sleep(c.a.index) || would_sleep(c.b.index)) && sliding(c))
             for (const std::uint32_t i : {c.a.index, c.b.index})
-                if (bodies_[i].type_ == BodyType::dynamic) island_min[find(i)] = T(0);
+                if (bodies_[i].type_ == BodyType::dynamic) island_min[island_root(i)] = T(0);
         for (const auto& [k, d] : {std::pair{c.a.index, c.b.index}, std::pair{c.b.index, c.a.index}}) {
             const Body<T>& kin = bodies_[k];
             if (kin.type_ == BodyType::kinematic &&
                 (length_squared(kin.linear_velocity_) > T(0) || length_squared(kin.angular_velocity_) > T(0)))
-                island_min[find(d)] = T(0);
-        }
-    }
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-        Body<T>& b = bodies_[i];
-        if (!b.alive_ || !b.enabled_ || b.type_ != BodyType::dynamic || !b.awake_) continue;
-        if (island_min[find(i)] >= settings_.sleep_time) {
-            b.awake_ = false;
-            b.linear_velocity_ = Vec3<T>::zero();
-            b.angular_velocity_ = Vec3<T>::zero();
+                island_min[island_root(d)] = T(0);
         }
     }
 }
