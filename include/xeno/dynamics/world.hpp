@@ -455,6 +455,7 @@ private:
         return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
     }
     void rebuild_joint_pairs();
+    Joint<T> make_joint(const JointDef<T>& def, const Body<T>& a, const Body<T>& b, const char* where);
     void set_axis_limit_motor(Joint<T>& j, const JointDef<T>& def, const Body<T>& a, const Body<T>& b, const char* where);
     static void check_limits(T lower, T upper, const char* where);
     static MassProperties<T> unit_mass(const Shape<T>* shape, const Compound<T>* compound) {

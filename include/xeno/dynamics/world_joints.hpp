@@ -54,20 +54,11 @@ void World<T>::check_limits(T lower, T upper, const char* where) {
         detail::report_invalid(where, "the lower limit must be <= the upper; lower - upper", static_cast<double>(lower - upper));
 }
 
+/// The joint `def` describes between bodies a and b (checked here: finite anchors within
+/// max_joint_lever of their bodies, the axis, limits and motor, a distance's length), not yet in
+/// a slot.
 template <class T>
-JointId World<T>::create_joint(const JointDef<T>& def) {
-    const char* where = "World::create_joint";
-    require_outside_filter(where);
-    const std::uint32_t ia = checked(def.a, where), ib = checked(def.b, where);
-    if (ia == ib) detail::report_invalid(where, "a joint needs two different bodies; body index", static_cast<double>(ia));
-    if (def.type != JointType::ball && def.type != JointType::hinge && def.type != JointType::fixed &&
-        def.type != JointType::distance && def.type != JointType::prismatic && def.type != JointType::swing_twist)
-        detail::report_invalid(where, "type must be ball, hinge, fixed, distance, prismatic or swing_twist; type",
-                               static_cast<double>(static_cast<std::uint8_t>(def.type)));
-    const Body<T>& a = bodies_[ia];
-    const Body<T>& b = bodies_[ib];
-    if (a.type_ == BodyType::static_body && b.type_ == BodyType::static_body)
-        detail::report_invalid(where, "a joint between two static bodies does nothing; body index", static_cast<double>(ib));
+Joint<T> World<T>::make_joint(const JointDef<T>& def, const Body<T>& a, const Body<T>& b, const char* where) {
     detail::require_finite_xyz(def.anchor_a, where, "anchor_a");
     detail::require_finite_xyz(def.anchor_b, where, "anchor_b");
     Joint<T> j;
@@ -94,6 +85,24 @@ JointId World<T>::create_joint(const JointDef<T>& def) {
         // float); the world's own snapshot then refused the infinite length.
         detail::require_at_most(j.length, ScalarTraits<T>::max_size, where, "length (given, or the anchors' distance)");
     }
+    return j;
+}
+
+template <class T>
+JointId World<T>::create_joint(const JointDef<T>& def) {
+    const char* where = "World::create_joint";
+    require_outside_filter(where);
+    const std::uint32_t ia = checked(def.a, where), ib = checked(def.b, where);
+    if (ia == ib) detail::report_invalid(where, "a joint needs two different bodies; body index", static_cast<double>(ia));
+    if (def.type != JointType::ball && def.type != JointType::hinge && def.type != JointType::fixed &&
+        def.type != JointType::distance && def.type != JointType::prismatic && def.type != JointType::swing_twist)
+        detail::report_invalid(where, "type must be ball, hinge, fixed, distance, prismatic or swing_twist; type",
+                               static_cast<double>(static_cast<std::uint8_t>(def.type)));
+    const Body<T>& a = bodies_[ia];
+    const Body<T>& b = bodies_[ib];
+    if (a.type_ == BodyType::static_body && b.type_ == BodyType::static_body)
+        detail::report_invalid(where, "a joint between two static bodies does nothing; body index", static_cast<double>(ib));
+    Joint<T> j = make_joint(def, a, b, where);
     std::uint32_t slot;
     if (!free_joints_.empty()) {
         slot = free_joints_.back();
