@@ -55,7 +55,7 @@ template <class V, std::size_t N>
 class Slots {
 public:
     static_assert(std::is_trivially_copyable_v<V> && std::is_trivially_destructible_v<V>, "plain values only");
-    Slots() {}  // NOLINT: leaves the slots unset, the point of the type
+    Slots() {}  // leaves the slots unset: the point of the type
     /// Slot i takes v (its lifetime starts here).
     void set(std::size_t i, const V& v) { ::new (static_cast<void*>(&slot_[i])) V(v); }
     /// A slot that was set.
