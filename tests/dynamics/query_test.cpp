@@ -283,4 +283,7 @@ TEST_CASE_TEMPLATE("a pick ray that ignores static bodies passes the ground and 
     CHECK(world.overlap_sphere(Vec3<T>{T(3), T(1), T(0)}, T(0.1)) == std::vector<BodyId>{box});
     CHECK_THROWS_AS(world.overlap_sphere(Vec3<T>{}, T(0)), InvalidArgument);
     CHECK_THROWS_AS(world.raycast_any(Ray<T>{{}, Vec3<T>{T(2), T(0), T(0)}, T(1)}), InvalidArgument);
+    // Corners swapped on one axis: an error, not an empty answer; a box of zero size is a point.
+    CHECK_THROWS_AS(world.query_aabb(Aabb<T>{{T(-1), T(2), T(-1)}, {T(1), T(0), T(1)}}), InvalidArgument);
+    CHECK(world.query_aabb(Aabb<T>{{T(3), T(1), T(0)}, {T(3), T(1), T(0)}}) == std::vector<BodyId>{box});
 }

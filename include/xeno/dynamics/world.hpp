@@ -349,7 +349,8 @@ public:
     std::vector<WorldRayHit<T>> raycast_all(const Ray<T>& ray, const QueryFilter<T>& filter = {}) const;
     /// The bodies whose shape contains the point (surface included).
     std::vector<BodyId> query_point(const Vec3<T>& point, const QueryFilter<T>& filter = {}) const;
-    /// The bodies whose tight bounding box overlaps the box (touching counts).
+    /// The bodies whose tight bounding box overlaps the box (touching counts). The box must be
+    /// finite with min <= max on every axis (InvalidArgument otherwise).
     std::vector<BodyId> query_aabb(const Aabb<T>& box, const QueryFilter<T>& filter = {}) const;
     /// The bodies a sphere overlaps (intersect(): touching is not overlapping). radius > 0.
     std::vector<BodyId> overlap_sphere(const Vec3<T>& center, T radius, const QueryFilter<T>& filter = {}) const;

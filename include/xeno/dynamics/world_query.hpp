@@ -120,6 +120,12 @@ template <class T>
 std::vector<BodyId> World<T>::query_aabb(const Aabb<T>& box, const QueryFilter<T>& filter) const {
     detail::require_finite_xyz(box.min, "World::query_aabb", "box.min");
     detail::require_finite_xyz(box.max, "World::query_aabb", "box.max");
+    // Corners given the wrong way round overlap nothing: a swapped box would find no body and say
+    // nothing (Box2D asserts the same).
+    const Vec3<T> inverted = box.min - box.max;
+    if (max_component(inverted) > T(0))
+        detail::report_invalid("World::query_aabb", "box.min must not exceed box.max on any axis; largest min - max (m)",
+                               static_cast<double>(max_component(inverted)));
     return overlapping(box, filter, [&](std::uint32_t slot) { return overlaps(bodies_[slot].world_bounds(), box); });
 }
 
