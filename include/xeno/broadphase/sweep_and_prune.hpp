@@ -78,8 +78,8 @@ private:
     };
     static Spread centre_spread(const std::vector<Aabb<T>>& boxes);
     T choose_columns(const std::vector<Aabb<T>>& boxes, const Spread& spread);
-    bool refresh_order(const std::vector<Aabb<T>>& boxes, int axis);
-    const Item* fill_columns(const Vec3<T>& low, T inv_cell);
+    bool refresh_order(const std::vector<Aabb<T>>& boxes, const Spread& spread);
+    const Item* fill_columns(const Spread& spread, T inv_cell);
     void sweep_columns(const Item* sweep, std::vector<ProxyPair>& pairs, TaskSystem* tasks);
     std::size_t sweep_column(const Item* sweep, std::size_t column, std::vector<ProxyPair>& out, std::size_t used) const;
 
@@ -104,11 +104,11 @@ void SweepAndPrune<T>::find_pairs(const std::vector<Aabb<T>>& boxes, std::vector
     pairs.clear();
     const Spread spread = centre_spread(boxes);
     const T inv_cell = choose_columns(boxes, spread);
-    if (refresh_order(boxes, spread.axis)) {  // every box as last time: so are the pairs
+    if (refresh_order(boxes, spread)) {  // every box as last time: so are the pairs
         pairs = last_pairs_;
         return;
     }
-    const Item* sweep = fill_columns(spread.low, inv_cell);
+    const Item* sweep = fill_columns(spread, inv_cell);
     sweep_columns(sweep, pairs, tasks);
     detail::sort_pairs_by_first(pairs, boxes.size(), counts_, scratch_);
     last_pairs_ = pairs;
@@ -176,10 +176,10 @@ T SweepAndPrune<T>::choose_columns(const std::vector<Aabb<T>>& boxes, const Spre
 /// box is as at the last call. Insertion sort while the order is nearly right; past a budget of
 /// moves (a cold start, or a scene that changed a lot) a full sort is cheaper.
 template <class T>
-bool SweepAndPrune<T>::refresh_order(const std::vector<Aabb<T>>& boxes, int axis) {
+bool SweepAndPrune<T>::refresh_order(const std::vector<Aabb<T>>& boxes, const Spread& spread) {
     constexpr T inf = ScalarTraits<T>::infinity;
     const std::size_t n = boxes.size();
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const int axis = spread.axis, u = spread.u(), v = spread.v();
     bool same = last_valid_ && axis == axis_ && order_.size() == n;
     if (axis != axis_ || order_.size() > n) {
         order_.clear();
@@ -222,7 +222,7 @@ bool SweepAndPrune<T>::refresh_order(const std::vector<Aabb<T>>& boxes, int axis
 /// (a counting sort: count, prefix sums, place), so every column stays sorted. Returns the boxes
 /// to sweep: items_ column after column, or order_ itself as the one column.
 template <class T>
-const typename SweepAndPrune<T>::Item* SweepAndPrune<T>::fill_columns(const Vec3<T>& low, T inv_cell) {
+const typename SweepAndPrune<T>::Item* SweepAndPrune<T>::fill_columns(const Spread& spread, T inv_cell) {
     const std::size_t columns = cells_u_ * cells_v_;
     start_.assign(columns + 1, 0);
     if (columns == 1) {
@@ -230,7 +230,8 @@ const typename SweepAndPrune<T>::Item* SweepAndPrune<T>::fill_columns(const Vec3
         start_[1] = static_cast<std::uint32_t>(order_.size());  // empty boxes at the end pair with nothing
         return order_.data();
     }
-    const int u = (axis_ + 1) % 3, v = (axis_ + 2) % 3;
+    const int u = spread.u(), v = spread.v();
+    const Vec3<T>& low = spread.low;
     const auto cell_of = [inv_cell](T x, T lo, std::size_t cells) {
         const T f = (x - lo) * inv_cell;  // clamped in floating point first: no overflow, NaN -> 0
         return static_cast<std::uint16_t>(f >= T(cells - 1) ? T(cells - 1) : f > T(0) ? std::floor(f) : T(0));

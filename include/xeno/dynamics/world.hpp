@@ -557,6 +557,8 @@ private:
         if (joint_stage_) (this->*joint_stage_)(stage, h);
     }
     BodyId id_of(std::uint32_t slot) const { return {slot, bodies_[slot].generation_}; }
+    /// A living, enabled, awake dynamic body: one whose sleep clock runs (update_sleep).
+    static bool awake_dynamic(const Body<T>& b) { return b.alive_ && b.enabled_ && b.type_ == BodyType::dynamic && b.awake_; }
     /// An awake dynamic body, or a kinematic body with a velocity: something that can push.
     static bool active(const Body<T>& b) {
         if (!b.enabled_) return false;
@@ -1318,7 +1320,6 @@ template <class T>
 void World<T>::classify_pairs(T dt) {
     const bool parallel = workers() > 1;
     pair_work_.resize(pairs_.size());
-    collide_jobs_.clear();
     early_jobs_.clear();
     remeasured_.clear();
     mesh_jobs_.clear();
@@ -1360,10 +1361,10 @@ void World<T>::classify_pairs(T dt) {
 /// mesh pairs' manifolds, each pair on its own, through the task system.
 template <class T>
 void World<T>::collide_on_workers(T dt) {
-    const bool parallel = workers() > 1;
-    if (parallel)
-        for (const std::uint32_t k : early_jobs_)
-            if (pair_work_[k].kind == PairKind::collided) collide_jobs_.push_back(k);
+    if (workers() <= 1) return;  // merge_contacts collides each pair in its place
+    collide_jobs_.clear();
+    for (const std::uint32_t k : early_jobs_)
+        if (pair_work_[k].kind == PairKind::collided) collide_jobs_.push_back(k);
     job_contacts_.resize(collide_jobs_.size());
     job_results_.resize(collide_jobs_.size());
     parallel_for(
@@ -2448,10 +2449,7 @@ bool World<T>::sliding(const Contact<T>& c) const {
 template <class T>
 void World<T>::update_sleep(T dt) {
     if (!settings_.allow_sleeping) return;
-    const auto awake_dynamic = [](const Body<T>& b) {
-        return b.alive_ && b.enabled_ && b.type_ == BodyType::dynamic && b.awake_;
-    };
-    if (std::none_of(bodies_.begin(), bodies_.end(), awake_dynamic)) return;  // no clock to run
+    if (std::none_of(bodies_.begin(), bodies_.end(), &World::awake_dynamic)) return;  // no clock to run
     build_islands();
     run_sleep_clocks(dt);
     keep_moving_islands_awake();
@@ -2476,7 +2474,7 @@ void World<T>::run_sleep_clocks(T dt) {
     island_sleep_time_.assign(bodies_.size(), ScalarTraits<T>::infinity);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         Body<T>& b = bodies_[i];
-        if (!b.alive_ || !b.enabled_ || b.type_ != BodyType::dynamic || !b.awake_) continue;
+        if (!awake_dynamic(b)) continue;
         const bool slow = length_squared(b.linear_velocity_) < lin_sq && length_squared(b.angular_velocity_) < ang_sq;
         if (b.sleep_time_ == T(0)) b.rest_position_ = b.position_, b.rest_orientation_ = b.orientation_;  // (re)starts
         // Near its rest pose but faster than the sleep speeds, the clock runs at a quarter rate,
