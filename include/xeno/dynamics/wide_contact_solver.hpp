@@ -415,7 +415,7 @@ public:
                                                              group_begin_.begin() - 1);
                 const std::uint32_t begin = colouring_.colour_begin[colour] + (g - group_begin_[colour]) * width;
                 const std::uint32_t end = std::min(begin + width, colouring_.colour_begin[colour + 1]);
-                groups_[g] = empty<width>();
+                start_group(groups_[g], rows, begin, end);
                 for (std::uint32_t i = begin; i < end; ++i) {
                     const std::uint32_t row = colouring_.order[i];
                     pack_lane(groups_[g], static_cast<int>(i - begin), row, rows[row], masses);
@@ -480,6 +480,27 @@ private:
                 for (std::uint32_t g = first + begin; g < first + end; ++g) f(g);
             });
         }
+    }
+
+    /// Readies group g for pack_lane, which writes every number of its lane but the point slots
+    /// beyond the lane's count. A full group zeroes only those (they are read, masked, up to the
+    /// fullest lane's count); a group with padding lanes is zeroed whole. Zeroing every group
+    /// first wrote its 2.4 KB (float; 4.6 KB in double) twice: the packing is bound by memory.
+    void start_group(Group& c, const std::vector<ContactConstraint<T>>& rows, std::uint32_t begin, std::uint32_t end) const {
+        if (end - begin < static_cast<std::uint32_t>(width)) {
+            c = empty<width>();
+            return;
+        }
+        int fewest = 4, most = 0;
+        for (std::uint32_t i = begin; i < end; ++i) {
+            fewest = std::min(fewest, rows[colouring_.order[i]].count);
+            most = std::max(most, rows[colouring_.order[i]].count);
+        }
+        for (int i = fewest; i < most; ++i) c.points[i] = WidePoint<typename Group::V>{};
+        c.max_count = 0;
+        c.min_count = 4;
+        c.rolls = false;
+        c.bounces = false;
     }
 
     template <int W>
