@@ -482,10 +482,10 @@ private:
         }
     }
 
-    /// Readies group g for pack_lane, which writes every number of its lane but the point slots
+    /// Readies a group for pack_lane, which writes every number of its lane but the point slots
     /// beyond the lane's count. A full group zeroes only those (they are read, masked, up to the
     /// fullest lane's count); a group with padding lanes is zeroed whole. Zeroing every group
-    /// first wrote its 2.4 KB (float; 4.6 KB in double) twice: the packing is bound by memory.
+    /// first wrote its 2.1 KB (in float and in double) twice: the packing is bound by memory.
     void start_group(Group& c, const std::vector<ContactConstraint<T>>& rows, std::uint32_t begin, std::uint32_t end) const {
         if (end - begin < static_cast<std::uint32_t>(width)) {
             c = empty<width>();
