@@ -271,3 +271,29 @@ TEST_CASE_TEMPLATE("a box swept a very long way down at the ground meets it wher
     CHECK(!shape_cast(a, at(T(0), T(5), T(0)), Vec3<T>{T(0), T(1e6), T(0)}, ground, at(T(0), T(-1), T(0))));
     CHECK(!shape_cast(a, at(T(0), T(5), T(100)), Vec3<T>{T(0), T(-1e6), T(0)}, ground, at(T(0), T(-1), T(0))));
 }
+
+// regression: a sweep whose length squared overflows T (from 1.8e19 m in float, 1.3e154 m in
+// double) was cast whole, at a tolerance scaled to its length, and a ball 2.7 m clear of a floor
+// came back as starting inside it (fraction 0, initially_overlapping). Its length is now taken
+// of the translation scaled by its largest component: the hit is where the ball meets the floor,
+// 2.7 m along, on a mesh and on a box alike.
+TEST_CASE_TEMPLATE("a shape cast longer than the square of T can hold finds the floor 2.7 m along", T, float, double) {
+    World<T> w;
+    BodyDef<T> level;
+    level.type = BodyType::static_body;
+    const std::vector<Vec3<T>> corners{{T(-5), T(0), T(-5)}, {T(-5), T(0), T(5)}, {T(5), T(0), T(5)}, {T(5), T(0), T(-5)}};
+    w.create_body(TriangleMesh<T>(corners, {{0, 1, 2}, {0, 2, 3}}), level);
+    level.position = {T(20), T(-0.5), T(0)};
+    w.create_body(Box<T>(T(5), T(0.5), T(5)), level);
+    const Shape<T> ball = Sphere<T>(T(0.3));
+    const T huge = std::is_same_v<T, float> ? T(2e19) : T(1e155);
+    for (const T x : {T(0), T(20)})
+        for (const T length : {huge, std::numeric_limits<T>::max() / T(2)}) {
+            CAPTURE(x);
+            CAPTURE(length);
+            const std::optional<WorldShapeCastHit<T>> hit = w.shape_cast(ball, at(x, T(3), T(0)), {T(0), -length, T(0)});
+            REQUIRE(hit);
+            CHECK(!hit->hit.initially_overlapping);
+            CHECK(std::abs(hit->hit.fraction * length - T(2.7)) < T(1e-3));
+        }
+}

@@ -421,3 +421,32 @@ TEST_CASE_TEMPLATE("mesh bodies are static or kinematic, are seen by queries, an
     for (int i = 0; i < 120; ++i) w.step(T(1) / T(60));
     CHECK(near(w.body(box).position().y, T(1.25), T(0.01)));  // 2 s at 0.5 m/s, still on top
 }
+
+// regression: Body::bounding_radius of a mesh or heightfield body read the convex shape it does
+// not have (a null reference; the joints' and the sweep's speed bounds call it).
+TEST_CASE_TEMPLATE("a mesh body's bounding radius holds its local box", T, float, double) {
+    World<T> w;
+    BodyDef<T> level;
+    level.type = BodyType::static_body;
+    const std::vector<Vec3<T>> corners{{T(-5), T(0), T(-5)}, {T(-5), T(1), T(5)}, {T(3), T(0), T(5)}};
+    const BodyId mesh = w.create_body(TriangleMesh<T>(corners, {Tri{0, 1, 2}}), level);
+    CHECK(near(w.body(mesh).bounding_radius(), std::sqrt(T(25) + T(1) + T(25)), T(1e-6)));
+    const BodyId field = w.create_body(HeightField<T>(3, 2, {T(0), T(2), T(0), T(0), T(-1), T(0)}, T(1)), level);
+    CHECK(near(w.body(field).bounding_radius(), std::sqrt(T(1) + T(4) + T(0.25)), T(1e-6)));
+}
+
+// regression: a joint to a mesh body bounds its rows' speeds by each body's bounding radius,
+// which crashed on the mesh body (above).
+TEST_CASE_TEMPLATE("a box hangs on a ball joint from a kinematic mesh body", T, float, double) {
+    World<T> w;
+    BodyDef<T> platform;
+    platform.type = BodyType::kinematic;
+    const std::vector<Vec3<T>> corners{{T(-5), T(0), T(-5)}, {T(-5), T(0), T(5)}, {T(5), T(0), T(5)}};
+    const BodyId mesh = w.create_body(TriangleMesh<T>(corners, {Tri{0, 1, 2}}), platform);
+    BodyDef<T> hanging;
+    hanging.position = {T(0), T(2), T(0)};
+    const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), hanging);
+    w.create_joint(JointDef<T>::ball(mesh, box, {T(0), T(2.5), T(0)}));
+    for (int i = 0; i < 60; ++i) w.step(T(1) / T(60));
+    CHECK(near(w.body(box).position(), hanging.position, T(1e-3)));
+}

@@ -176,3 +176,27 @@ TEST_CASE_TEMPLATE("a heightfield rejects bad input, and its holes have no trian
     CHECK(seen == 6);
     CHECK_FALSE(field.raycast(Ray<T>{{T(0.5), T(3), T(0.5)}, {T(0), T(-1), T(0)}, T(10)}));  // through the hole
 }
+
+// regression: a cell whose heights step a thousand spacings or more was accepted with triangles
+// of no normal (detail::triangle_normal's sliver test): rays hit it with a zero normal and
+// bodies passed through. A step of 500 spacings is a steep cell, not a broken one.
+TEST_CASE_TEMPLATE("a heightfield rejects a cell too steep for its spacing to have a normal", T, float, double) {
+    std::vector<T> cliff(9, T(0));
+    for (std::size_t j = 0; j < 3; ++j) cliff[j * 3 + 2] = T(1e6);
+    CHECK_THROWS_AS(HeightField<T>(3, 3, cliff, T(1)), InvalidArgument);
+    CHECK_THROWS_AS(HeightField<T>(3, 3, cliff, T(1), {0, 1, 0, 0}), InvalidArgument);  // one cliff cell left
+    const HeightField<T> holed(3, 3, cliff, T(1), {0, 1, 0, 1});                        // both are holes
+    CHECK(holed.size() == 8);
+    std::vector<T> steep(9, T(0));
+    steep[4] = T(500);
+    const HeightField<T> peak(3, 3, steep, T(1));
+    for (std::uint32_t k = 0; k < peak.size(); ++k) CHECK(double(length(peak.triangle(k).normal)) == doctest::Approx(1.0));
+}
+
+// regression: in float, spacing × i puts two samples on one coordinate past about 2^23 samples
+// along an axis; a field of 2 × (2^24 + 4) samples was accepted, and a body at its far edge read
+// heights past the end of the array (the last cell's index rounded up in T).
+TEST_CASE("a float heightfield with more rows than float can place apart is rejected") {
+    const std::uint32_t rows = (1u << 24) + 4;
+    CHECK_THROWS_AS(HeightField<float>(2, rows, std::vector<float>(2 * std::size_t(rows), 0.f), 0.01f), InvalidArgument);
+}

@@ -102,8 +102,16 @@ public:
         return compound() ? transform() * compound()->children()[i].local : transform();
     }
     /// m: the radius about the centre of mass of a ball holding every part (convex and compound
-    /// bodies; a mesh body has none).
-    T bounding_radius() const { return compound() ? compound()->bounding_radius() : xeno::bounding_radius(*convex_shape()); }
+    /// bodies); for a mesh or heightfield body, about its origin, of the ball holding its local
+    /// bounding box.
+    T bounding_radius() const {
+        if (const MeshShape<T>* m = mesh()) {
+            const Aabb<T> box = local_bounds(*m);
+            const auto reach = [](T low, T high) { return std::max(std::abs(low), std::abs(high)); };
+            return length(Vec3<T>{reach(box.min.x, box.max.x), reach(box.min.y, box.max.y), reach(box.min.z, box.max.z)});
+        }
+        return compound() ? compound()->bounding_radius() : xeno::bounding_radius(*convex_shape());
+    }
     /// World bounding box of the whole body (every part).
     Aabb<T> world_bounds() const {
         if (mesh()) return xeno::world_bounds(*mesh(), transform());

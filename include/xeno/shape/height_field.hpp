@@ -14,8 +14,10 @@
 #include "../error.hpp"
 #include "triangle_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -27,9 +29,11 @@ class HeightField {
 public:
     using scalar_type = T;
 
-    /// columns, rows >= 2; heights.size() == columns × rows, finite and within the size range;
-    /// spacing finite and within [min_size, max_size]; holes empty or one flag per cell
-    /// ((columns − 1) × (rows − 1), row-major, non-zero = hole). InvalidArgument otherwise.
+    /// columns, rows >= 2, fewer than 2^31 cells; heights.size() == columns × rows, finite and
+    /// within the size range; spacing finite and within [min_size, max_size]; holes empty or one
+    /// flag per cell ((columns − 1) × (rows − 1), row-major, non-zero = hole); no cell (but a
+    /// hole) so steep for its spacing that a triangle of it has no normal. InvalidArgument
+    /// otherwise.
     HeightField(std::uint32_t columns, std::uint32_t rows, std::vector<T> heights, T spacing,
                 std::vector<std::uint8_t> holes = {});
 
@@ -65,6 +69,7 @@ private:
                !hole(static_cast<std::uint32_t>(ci), static_cast<std::uint32_t>(cj));
     }
     MeshTriangle<T> corners(std::uint32_t k) const;  ///< triangle k without its edges' data
+    void require_normals(const char* where) const;   ///< InvalidArgument for a cell with a triangle of no normal
     void add_edges(std::uint32_t k, MeshTriangle<T>& t) const;
     /// Cell range [lo, hi] (inclusive) along one axis covering [a, b] in local coordinates.
     bool cell_range(T a, T b, T origin, std::uint32_t samples, std::uint32_t& lo, std::uint32_t& hi) const;
@@ -91,8 +96,12 @@ HeightField<T>::HeightField(std::uint32_t columns, std::uint32_t rows, std::vect
         detail::report_invalid(where, "needs no holes or one flag per cell, (columns − 1) × (rows − 1); flags given",
                                static_cast<double>(holes_.size()));
     detail::require_size(spacing_, where, "spacing");
-    for (std::size_t k = 0; k < heights_.size(); ++k)
-        detail::require_at_most(heights_[k], ScalarTraits<T>::max_size, where, ("height " + std::to_string(k)).c_str(), " m");
+    for (std::size_t k = 0; k < heights_.size(); ++k)  // (the name is built for a bad height only: 0.3 s for 4097²)
+        if (!(std::abs(heights_[k]) <= ScalarTraits<T>::max_size))
+            detail::require_at_most(heights_[k], ScalarTraits<T>::max_size, where, ("height " + std::to_string(k)).c_str(), " m");
+    if (std::size_t(columns_ - 1) * (rows_ - 1) > std::size_t(std::numeric_limits<std::uint32_t>::max() / 2))
+        detail::report_invalid(where, "needs fewer than 2^31 cells (two triangles each, numbered in 32 bits); cells",
+                               static_cast<double>(std::size_t(columns_ - 1) * (rows_ - 1)));
     const T width = spacing_ * static_cast<T>(columns_ - 1), depth = spacing_ * static_cast<T>(rows_ - 1);
     if (!(width <= ScalarTraits<T>::max_size && depth <= ScalarTraits<T>::max_size))
         detail::report_invalid(where, "extent (spacing × cells) must be within the size range; metres",
@@ -101,6 +110,47 @@ HeightField<T>::HeightField(std::uint32_t columns, std::uint32_t rows, std::vect
     origin_z_ = -T(0.5) * depth;
     const auto [low, high] = std::minmax_element(heights_.begin(), heights_.end());
     bounds_ = {{origin_x_, *low, origin_z_}, {origin_x_ + width, *high, origin_z_ + depth}};
+    require_normals(where);
+}
+
+// A cell whose heights step so far over its spacing that a triangle of it has no normal
+// (detail::triangle_normal: |n| > 1e-6 × the longest edge²) would be a wall with no side: rays
+// hit it with a zero normal and bodies passed through it. A triangle mesh drops such triangles; a
+// grid cannot, so it is rejected. Both triangles of a cell have |n| ≥ dx dz (the cell's widths as
+// the samples' coordinates round) and edges no longer than √(dx² + dz² + D²), D the cell's
+// height span; a cell whose span is within that bound, with room for rounding, is sound without
+// measuring its triangles (every cell but a cliff a thousand spacings high), the rest are
+// measured.
+template <class T>
+void HeightField<T>::require_normals(const char* where) const {
+    T narrow_x = ScalarTraits<T>::infinity, wide_x = T(0), narrow_z = ScalarTraits<T>::infinity, wide_z = T(0);
+    // Past about 2^23 samples along an axis in float, spacing × i rounds two samples onto one
+    // coordinate: a cell of no width.
+    for (std::uint32_t i = 0; i + 1 < columns_; ++i) {
+        const T dx = sample(i + 1, 0).x - sample(i, 0).x;
+        if (!(dx > T(0)))
+            detail::report_invalid(where, "has two columns at one x (too many for T at this spacing); column",
+                                   static_cast<double>(i));
+        narrow_x = std::min(narrow_x, dx), wide_x = std::max(wide_x, dx);
+    }
+    for (std::uint32_t j = 0; j + 1 < rows_; ++j) {
+        const T dz = sample(0, j + 1).z - sample(0, j).z;
+        if (!(dz > T(0)))
+            detail::report_invalid(where, "has two rows at one z (too many for T at this spacing); row", static_cast<double>(j));
+        narrow_z = std::min(narrow_z, dz), wide_z = std::max(wide_z, dz);
+    }
+    const T room = narrow_x * narrow_z * T(0.999) / T(1e-6) - (wide_x * wide_x + wide_z * wide_z) * T(1.001);  // D² allowed
+    for (std::uint32_t j = 0; j + 1 < rows_; ++j)
+        for (std::uint32_t i = 0; i + 1 < columns_; ++i) {
+            if (hole(i, j)) continue;
+            const T a = height(i, j), b = height(i + 1, j), c = height(i, j + 1), d = height(i + 1, j + 1);
+            const T span = std::max({a, b, c, d}) - std::min({a, b, c, d});
+            if (span * span < room) continue;
+            const std::uint32_t k = 2 * (j * (columns_ - 1) + i);
+            if (length_squared(corners(k).normal) == T(0) || length_squared(corners(k + 1).normal) == T(0))
+                detail::report_invalid(where, "has a cell too steep for its spacing (a triangle with no normal); cell",
+                                       static_cast<double>(k / 2));
+        }
 }
 
 template <class T>
@@ -152,13 +202,17 @@ MeshTriangle<T> HeightField<T>::triangle(std::uint32_t k) const {
     return t;
 }
 
+// The last cell is clamped in integers: a count of cells converted to T may round up past it
+// (in float, 2^24 + 3 rows became 2^24 + 4 cells, and a box at the far edge read heights past the
+// end).
 template <class T>
 bool HeightField<T>::cell_range(T a, T b, T origin, std::uint32_t samples, std::uint32_t& lo, std::uint32_t& hi) const {
     const T first = std::floor((a - origin) / spacing_), last = std::floor((b - origin) / spacing_);
-    const T cells = static_cast<T>(samples - 1);
-    if (!(last >= T(0) && first < cells)) return false;
-    lo = static_cast<std::uint32_t>(std::max(first, T(0)));
-    hi = static_cast<std::uint32_t>(std::min(last, cells - T(1)));
+    const std::uint32_t cells = samples - 1;
+    if (!(last >= T(0) && first < static_cast<T>(cells))) return false;
+    // first < cells ≤ 2^32 (as T): a whole number the cast holds.
+    lo = std::min(static_cast<std::uint32_t>(std::max(first, T(0))), cells - 1);
+    hi = last < static_cast<T>(cells) ? std::min(static_cast<std::uint32_t>(last), cells - 1) : cells - 1;
     return true;
 }
 
