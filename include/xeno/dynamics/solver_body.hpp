@@ -36,8 +36,9 @@ static_assert(sizeof(SolverBody<double>) == 13 * sizeof(double), "the hot state 
 /// carry a copy of their two bodies'; contact rows fold them into their Jacobians.
 template <class T>
 struct SolverMass {
-    T inv_mass{};           ///< 1/kg, 0 for static and kinematic
-    Mat3<T> inv_inertia{};  ///< world
+    T inv_mass{};            ///< 1/kg, 0 for static and kinematic
+    Mat3<T> inv_inertia{};   ///< world
+    bool spins_far = false;  ///< turns more than a quarter of a radian in the step (levers_turn_far)
 };
 
 /// Applies an impulse P (N·s) at offset r from the centre of mass: Δv = P/m, Δω = I⁻¹ (r × P).

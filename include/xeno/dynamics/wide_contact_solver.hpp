@@ -61,6 +61,7 @@ struct WideContact {
     int min_count;             ///< points of the emptiest lane that holds a manifold
     bool rolls;                ///< some lane has a rounded side (round_a or round_b > 0)
     bool bounces;              ///< some lane has a restitution (its points' approach speeds are kept)
+    bool turns;                ///< some lane has a side whose levers turn (its WideTurn)
     V count;                   ///< points per lane
     WideVec3<V> normal, t1, t2;
     V inv_mass_a, inv_mass_b, friction;
@@ -74,12 +75,58 @@ struct WideContact {
     V round_a, round_b;                           ///< radii of the rounded surfaces (ContactConstraint)
 };
 
+/// What a group that turns levers (turned_moment) needs besides its own numbers, kept beside the
+/// groups: held in each group, it made every group 6 % longer (2.2 KB in float), turning or not.
+template <class V>
+struct WideTurn {
+    V turn_a, turn_b;        ///< 1 where the lane's side turns its levers, else 0
+    WideVec3<V> rc_a, rc_b;  ///< m, the levers to the patch centres at the start of the step
+};
+
+/// Turning levers. A row's levers are fixed in world space for the step, while its bodies turn
+/// through the substeps. For most bodies that is a small error, but a body that spins fast turns
+/// a point near its spin axis, and not on it, far enough that the rows held still a point that
+/// had moved: the apex of a top spun at 300 rad/s and tilted 0.1 rad slid 0.2 m in 2 s
+/// (docs/solver.md, "A fast top: turning levers"). The sides marked to turn (ContactConstraint::
+/// turns_a, turns_b) take their levers turned by the body's rotation so far, Δq r, as the joints
+/// do; the others, and a round side, whose contact point stays where it touches, keep theirs.
+/// Lane by lane (a select), so a lane's numbers do not depend on the lanes beside it.
+/// `lanes` holds 1 where the side turns: the moment of the turned lever there, the fixed one
+/// elsewhere.
+template <class T, int W>
+XENO_WIDE_INLINE WideVec3<Wide<T, W>> turned_moment(const Wide<T, W>& lanes, const WideVec3<Wide<T, W>>& fixed,
+                                                    const WideQuat<Wide<T, W>>& dq, const WideVec3<Wide<T, W>>& lever,
+                                                    const WideVec3<Wide<T, W>>& direction) {
+    return select(lanes > Wide<T, W>::splat(T(0)), cross(rotate(dq, lever), direction), fixed);
+}
+
+/// The turned value in the routines compiled for groups that turn levers, else the stored one,
+/// read where it is used (Turning false is the code, and the bytes read, of fixed levers alone:
+/// a copy held in registers made the box pyramid's solve 18 % slower).
+template <bool Turning, class X>
+XENO_WIDE_INLINE const X& pick(const X& turned, const X& fixed) {
+    if constexpr (Turning) return turned;
+    else return fixed;
+}
+
 /// The velocities (and, for the biased rows, the step displacement) of W bodies in lanes.
 template <class V>
 struct WideBody {
     WideVec3<V> v, w, dp;
     WideQuat<V> dq;
 };
+
+/// The friction rows' moments rc × t1, rc × t2 of both sides with turned levers (turned_moment).
+template <class V>
+struct FrictionMoments {
+    WideVec3<V> a1, a2, b1, b2;
+};
+template <class T, int W>
+XENO_WIDE_INLINE FrictionMoments<Wide<T, W>> friction_moments(const WideContact<T, W>& c, const WideTurn<Wide<T, W>>& t,
+                                                              const WideBody<Wide<T, W>>& A, const WideBody<Wide<T, W>>& B) {
+    return {turned_moment(t.turn_a, c.a1, A.dq, t.rc_a, c.t1), turned_moment(t.turn_a, c.a2, A.dq, t.rc_a, c.t2),
+            turned_moment(t.turn_b, c.b1, B.dq, t.rc_b, c.t1), turned_moment(t.turn_b, c.b2, B.dq, t.rc_b, c.t2)};
+}
 
 /// The solver body's first 13 numbers, v, w, dp and dq in that order, are read and written as
 /// one record (load_transposed): the layout this relies on.
@@ -139,10 +186,10 @@ XENO_WIDE_INLINE void apply_wide(WideBody<V>& A, WideBody<V>& B, bool masked, co
 /// Warm start: last step's impulses applied to both bodies. Applying impulses needs no velocity,
 /// so the angular impulses are summed first (points, then friction, then twist: the order of
 /// apply_contact_impulses) and each body's inverse inertia applied once.
-template <class T, int W>
-void warm_start_wide(const WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies) {
+template <bool Turning, class T, int W>
+void warm_start_group(const WideContact<T, W>& c, const WideTurn<Wide<T, W>>* t, std::vector<SolverBody<T>>& bodies) {
     using V = Wide<T, W>;
-    WideBody<V> A = gather<T, W>(bodies, c.a, false), B = gather<T, W>(bodies, c.b, false);
+    WideBody<V> A = gather<T, W>(bodies, c.a, Turning), B = gather<T, W>(bodies, c.b, Turning);
     const V zero = V::splat(T(0));
     V push = zero;
     WideVec3<V> turn_a{zero, zero, zero}, turn_b{zero, zero, zero};
@@ -152,21 +199,38 @@ void warm_start_wide(const WideContact<T, W>& c, std::vector<SolverBody<T>>& bod
         const bool masked = i >= c.min_count;
         const typename V::Mask active = V::splat(T(i)) < c.count;
         const V pushed = push + p.normal_impulse;
-        const WideVec3<V> ta = turn_a + p.rn_a * p.normal_impulse, tb = turn_b + p.rn_b * p.normal_impulse;
+        WideVec3<V> turned_a, turned_b;
+        if constexpr (Turning) {
+            turned_a = turned_moment(t->turn_a, p.rn_a, A.dq, p.r_a, c.normal);
+            turned_b = turned_moment(t->turn_b, p.rn_b, B.dq, p.r_b, c.normal);
+        }
+        const WideVec3<V>& rn_a = pick<Turning>(turned_a, p.rn_a);
+        const WideVec3<V>& rn_b = pick<Turning>(turned_b, p.rn_b);
+        const WideVec3<V> ta = turn_a + rn_a * p.normal_impulse, tb = turn_b + rn_b * p.normal_impulse;
         push = masked ? select(active, pushed, push) : pushed;
         turn_a = masked ? select(active, ta, turn_a) : ta;
         turn_b = masked ? select(active, tb, turn_b) : tb;
     }
     // Padding lanes need no mask: they write to the static stand-in, which scatter skips.
     const WideVec3<V> f = c.normal * push + (c.t1 * c.friction_1 + c.t2 * c.friction_2);
-    turn_a = turn_a + (c.a1 * c.friction_1 + c.a2 * c.friction_2) + c.normal * c.twist_impulse;
-    turn_b = turn_b + (c.b1 * c.friction_1 + c.b2 * c.friction_2) + c.normal * c.twist_impulse;
+    FrictionMoments<V> m;
+    if constexpr (Turning) m = friction_moments(c, *t, A, B);
+    const WideVec3<V>&a1 = pick<Turning>(m.a1, c.a1), &a2 = pick<Turning>(m.a2, c.a2);
+    const WideVec3<V>&b1 = pick<Turning>(m.b1, c.b1), &b2 = pick<Turning>(m.b2, c.b2);
+    turn_a = turn_a + (a1 * c.friction_1 + a2 * c.friction_2) + c.normal * c.twist_impulse;
+    turn_b = turn_b + (b1 * c.friction_1 + b2 * c.friction_2) + c.normal * c.twist_impulse;
     A.v = A.v - f * c.inv_mass_a;
     A.w = A.w - c.inv_inertia_a * turn_a;
     B.v = B.v + f * c.inv_mass_b;
     B.w = B.w + c.inv_inertia_b * turn_b;
     scatter<T, W>(A, bodies, c.a);
     scatter<T, W>(B, bodies, c.b);
+}
+/// `t`: the group's WideTurn where it turns levers (c.turns), else unread.
+template <class T, int W>
+void warm_start_wide(const WideContact<T, W>& c, const WideTurn<Wide<T, W>>* t, std::vector<SolverBody<T>>& bodies) {
+    if (c.turns) warm_start_group<true>(c, t, bodies);
+    else warm_start_group<false>(c, t, bodies);
 }
 
 /// Restitution's approach speed at the impact: each point's v_n at the start of the step plus
@@ -217,11 +281,11 @@ XENO_WIDE_INLINE Wide<T, W> rolling_rise(const WideContact<T, W>& c, const WideV
 /// lane is solved where i < limit (c.count: all of the lane's points; 0: none, the lane keeps its
 /// values). `masked_all` false lets the points every lane has skip that test. Returns Σ |Δλ| per
 /// lane.
-template <class T, int W>
-XENO_WIDE_INLINE Wide<T, W> sweep_normal_rows(WideContact<T, W>& c, WideBody<Wide<T, W>>& A, WideBody<Wide<T, W>>& B,
-                                              const WideVec3<Wide<T, W>>& n_a, const WideVec3<Wide<T, W>>& n_b,
-                                              const Wide<T, W>& moved, const SolvePass<T>& pass, const Wide<T, W>& limit,
-                                              bool masked_all) {
+template <bool Turning, class T, int W>
+XENO_WIDE_INLINE Wide<T, W> sweep_normal_rows(WideContact<T, W>& c, const WideTurn<Wide<T, W>>* t, WideBody<Wide<T, W>>& A,
+                                              WideBody<Wide<T, W>>& B, const WideVec3<Wide<T, W>>& n_a,
+                                              const WideVec3<Wide<T, W>>& n_b, const Wide<T, W>& moved, const SolvePass<T>& pass,
+                                              const Wide<T, W>& limit, bool masked_all) {
     using V = Wide<T, W>;
     const V zero = V::splat(T(0)), one = V::splat(T(1)), inv_h = V::splat(pass.inv_h);
     const V max_push = V::splat(pass.max_push_out_speed);
@@ -245,23 +309,31 @@ XENO_WIDE_INLINE Wide<T, W> sweep_normal_rows(WideContact<T, W>& c, WideBody<Wid
         mass_scale = select(speculative, one, mass_scale);
         impulse_scale = select(speculative, zero, impulse_scale);
 
-        const V vn = dot(B.v - A.v, c.normal) + dot(B.w, p.rn_b) - dot(A.w, p.rn_a);
+        WideVec3<V> turned_a, turned_b;
+        if constexpr (Turning) {
+            turned_a = turned_moment(t->turn_a, p.rn_a, A.dq, p.r_a, c.normal);
+            turned_b = turned_moment(t->turn_b, p.rn_b, B.dq, p.r_b, c.normal);
+        }
+        const WideVec3<V>& rn_a = pick<Turning>(turned_a, p.rn_a);
+        const WideVec3<V>& rn_b = pick<Turning>(turned_b, p.rn_b);
+        const V vn = dot(B.v - A.v, c.normal) + dot(B.w, rn_b) - dot(A.w, rn_a);
         const V delta = zero - p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
         const V clamped = max(p.normal_impulse + delta, zero);
         const V updated = masked ? select(active, clamped, p.normal_impulse) : clamped;
         const V applied = updated - p.normal_impulse;
         p.normal_impulse = updated;
         p.max_normal_impulse = max(p.max_normal_impulse, updated);
-        apply_wide(A, B, masked, active, c.normal, applied, c.inv_mass_a, c.inv_mass_b, c.inv_inertia_a * p.rn_a,
-                   c.inv_inertia_b * p.rn_b);
+        apply_wide(A, B, masked, active, c.normal, applied, c.inv_mass_a, c.inv_mass_b, c.inv_inertia_a * rn_a,
+                   c.inv_inertia_b * rn_b);
         pushed = pushed + abs(applied);
     }
     return pushed;
 }
 
 /// One Gauss–Seidel pass over W manifolds: the rows described in contact_solver.hpp.
-template <class T, int W>
-void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const SolvePass<T>& pass) {
+template <bool Turning, class T, int W>
+XENO_WIDE_INLINE void solve_group(WideContact<T, W>& c, const WideTurn<Wide<T, W>>* t, std::vector<SolverBody<T>>& bodies,
+                                  const SolvePass<T>& pass) {
     using V = Wide<T, W>;
     const V zero = V::splat(T(0)), one = V::splat(T(1));
     WideBody<V> A = gather<T, W>(bodies, c.a, true), B = gather<T, W>(bodies, c.b, true);
@@ -279,11 +351,11 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
     // on the lanes beside it (the same bits at every width). Resting contacts change by g h a pass.
     constexpr T kImpactSpeed = T(0.2);  // m/s
     constexpr int kImpactSweeps = 3;
-    const V pushed = sweep_normal_rows(c, A, B, n_a, n_b, moved, pass, c.count, false);
+    const V pushed = sweep_normal_rows<Turning>(c, t, A, B, n_a, n_b, moved, pass, c.count, false);
     const typename V::Mask impact = pushed * (c.inv_mass_a + c.inv_mass_b) > V::splat(kImpactSpeed);
     if (bits(impact) != 0)
         for (int k = 0; k < kImpactSweeps; ++k)
-            sweep_normal_rows(c, A, B, n_a, n_b, moved, pass, select(impact, c.count, zero), true);
+            sweep_normal_rows<Turning>(c, t, A, B, n_a, n_b, moved, pass, select(impact, c.count, zero), true);
     V total = zero;
     for (int i = 0; i < c.max_count; ++i) {
         WidePoint<V>& p = c.points[i];
@@ -293,8 +365,12 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
 
     // Central friction: a 2-D row at the patch centre, clamped to the Coulomb disc.
     const WideVec3<V> dv = B.v - A.v;
-    const V v1 = dot(dv, c.t1) + dot(B.w, c.b1) - dot(A.w, c.a1);
-    const V v2 = dot(dv, c.t2) + dot(B.w, c.b2) - dot(A.w, c.a2);
+    FrictionMoments<V> m;
+    if constexpr (Turning) m = friction_moments(c, *t, A, B);
+    const WideVec3<V>&a1 = pick<Turning>(m.a1, c.a1), &a2 = pick<Turning>(m.a2, c.a2);
+    const WideVec3<V>&b1 = pick<Turning>(m.b1, c.b1), &b2 = pick<Turning>(m.b2, c.b2);
+    const V v1 = dot(dv, c.t1) + dot(B.w, b1) - dot(A.w, a1);
+    const V v2 = dot(dv, c.t2) + dot(B.w, b2) - dot(A.w, a2);
     V f1 = c.friction_1 - (c.k11 * v1 + c.k12 * v2);
     V f2 = c.friction_2 - (c.k12 * v1 + c.k22 * v2);
     const V bound = c.friction * total;
@@ -308,9 +384,9 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
     c.friction_2 = f2;
     const WideVec3<V> f = c.t1 * d1 + c.t2 * d2;
     A.v = A.v - f * c.inv_mass_a;
-    A.w = A.w - c.inv_inertia_a * (c.a1 * d1 + c.a2 * d2);
+    A.w = A.w - c.inv_inertia_a * (a1 * d1 + a2 * d2);
     B.v = B.v + f * c.inv_mass_b;
-    B.w = B.w + c.inv_inertia_b * (c.b1 * d1 + c.b2 * d2);
+    B.w = B.w + c.inv_inertia_b * (b1 * d1 + b2 * d2);
 
     // Twist friction about the normal.
     const typename V::Mask twisting = c.twist_mass > zero;
@@ -323,6 +399,24 @@ void solve_wide(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const 
     B.w = select(twisting, B.w + (c.inv_inertia_b * c.normal) * d_twist, B.w);
     scatter<T, W>(A, bodies, c.a);
     scatter<T, W>(B, bodies, c.b);
+}
+template <class T, int W>
+XENO_WIDE_NOINLINE void solve_turning(WideContact<T, W>& c, const WideTurn<Wide<T, W>>* t, std::vector<SolverBody<T>>& bodies,
+                                      const SolvePass<T>& pass) {
+    solve_group<true>(c, t, bodies, pass);
+}
+/// One pass over a group, `t` its WideTurn where it turns levers (c.turns). WideContactRows
+/// calls solve_fixed alone while no group turns levers, nearly always: a branch to the turning
+/// code at each group made the box pyramid's solve, which never takes it, 6–14 % slower.
+template <class T, int W>
+void solve_fixed(WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies, const SolvePass<T>& pass) {
+    solve_group<false>(c, static_cast<const WideTurn<Wide<T, W>>*>(nullptr), bodies, pass);
+}
+template <class T, int W>
+void solve_wide(WideContact<T, W>& c, const WideTurn<Wide<T, W>>* t, std::vector<SolverBody<T>>& bodies,
+                const SolvePass<T>& pass) {
+    if (c.turns) solve_turning(c, t, bodies, pass);
+    else solve_fixed(c, bodies, pass);
 }
 
 /// Lane `l` of `dst` set to the upper triangle of `m` (a world inverse inertia, symmetric up to
@@ -371,6 +465,14 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
     c.bounces = c.bounces || k.restitution > T(0);
 }
 
+/// Fills lane `l` of the WideTurn of a group that turns levers.
+template <class V, class T>
+void pack_turn(WideTurn<V>& t, int l, const ContactConstraint<T>& k) {
+    t.turn_a.set(l, k.turns_a ? T(1) : T(0)), t.turn_b.set(l, k.turns_b ? T(1) : T(0));
+    t.rc_a.x.set(l, k.rc_a.x), t.rc_a.y.set(l, k.rc_a.y), t.rc_a.z.set(l, k.rc_a.z);
+    t.rc_b.x.set(l, k.rc_b.x), t.rc_b.y.set(l, k.rc_b.y), t.rc_b.z.set(l, k.rc_b.z);
+}
+
 /// Copies lane `l`'s impulses back into its scalar row (for restitution, events and the next
 /// step's warm start).
 template <class T, int W>
@@ -397,8 +499,10 @@ public:
     using Single = WideContact<T, 1>;
 
     /// Colours and packs `rows` (their bodies' masses frozen in `masses`); the packing of the
-    /// groups runs through `tasks` (task_system.hpp).
-    void build(const std::vector<ContactConstraint<T>>& rows, const std::vector<SolverMass<T>>& masses, TaskSystem* tasks) {
+    /// groups runs through `tasks` (task_system.hpp). `turning`: some row turns its levers
+    /// (ContactConstraint::turns_a, turns_b); its group's WideTurn is then kept at its index.
+    void build(const std::vector<ContactConstraint<T>>& rows, const std::vector<SolverMass<T>>& masses, bool turning,
+               TaskSystem* tasks) {
         colouring_.build(
             rows.size(), masses.size(), [&](std::size_t i) { return rows[i].a; }, [&](std::size_t i) { return rows[i].b; });
         group_begin_.assign(ConstraintColouring::colours + 1, 0u);
@@ -408,6 +512,8 @@ public:
                 group_begin_[c] + (static_cast<std::uint32_t>(colouring_.colour_size(colour)) + width - 1) / width;
         }
         groups_.resize(group_begin_.back());
+        turning_ = turning;
+        if (turning) group_turns_.resize(groups_.size());
         parallel_for(tasks, static_cast<std::uint32_t>(groups_.size()), pack_range, [&](std::uint32_t first, std::uint32_t last) {
             for (std::uint32_t g = first; g < last; ++g) {
                 // The colour of group g, and the rows it packs: W consecutive rows of that colour.
@@ -416,29 +522,44 @@ public:
                 const std::uint32_t begin = colouring_.colour_begin[colour] + (g - group_begin_[colour]) * width;
                 const std::uint32_t end = std::min(begin + width, colouring_.colour_begin[colour + 1]);
                 start_group(groups_[g], rows, begin, end);
+                if (groups_[g].turns) group_turns_[g] = WideTurn<typename Group::V>{};  // padding lanes turn nothing
                 for (std::uint32_t i = begin; i < end; ++i) {
                     const std::uint32_t row = colouring_.order[i];
                     pack_lane(groups_[g], static_cast<int>(i - begin), row, rows[row], masses);
+                    if (groups_[g].turns) pack_turn(group_turns_[g], static_cast<int>(i - begin), rows[row]);
                 }
             }
         });
         overflow_.clear();
+        single_turns_.clear();
         for (const std::uint32_t row : colouring_.overflow) {
             overflow_.push_back(empty<1>());
+            overflow_.back().turns = rows[row].turns_a || rows[row].turns_b;
             pack_lane(overflow_.back(), 0, row, rows[row], masses);
+            if (turning) pack_turn(single_turns_.emplace_back(), 0, rows[row]);
         }
     }
 
     /// The overflow rows one by one, then each colour's groups through `tasks` (a colour's groups
     /// share no moving body, so they may run at once; the colours run one after another).
     void warm_start(std::vector<SolverBody<T>>& bodies, TaskSystem* tasks) const {
-        for (const Single& c : overflow_) warm_start_wide(c, bodies);
-        for_each_colour(tasks, [&](std::uint32_t g) { warm_start_wide(groups_[g], bodies); });
+        if (!turning_) {  // (as solve)
+            for (const Single& c : overflow_) warm_start_group<false>(c, no_turn<1>(), bodies);
+            for_each_colour(tasks, [&](std::uint32_t g) { warm_start_group<false>(groups_[g], no_turn<width>(), bodies); });
+        } else {
+            for (std::size_t i = 0; i < overflow_.size(); ++i) warm_start_wide(overflow_[i], single_turn(i), bodies);
+            for_each_colour(tasks, [&](std::uint32_t g) { warm_start_wide(groups_[g], group_turn(g), bodies); });
+        }
         bodies[0] = SolverBody<T>{};
     }
     void solve(std::vector<SolverBody<T>>& bodies, const SolvePass<T>& pass, TaskSystem* tasks) {
-        for (Single& c : overflow_) solve_wide(c, bodies, pass);
-        for_each_colour(tasks, [&](std::uint32_t g) { solve_wide(groups_[g], bodies, pass); });
+        if (!turning_) {
+            for (Single& c : overflow_) solve_fixed(c, bodies, pass);
+            for_each_colour(tasks, [&](std::uint32_t g) { solve_fixed(groups_[g], bodies, pass); });
+        } else {
+            for (std::size_t i = 0; i < overflow_.size(); ++i) solve_wide(overflow_[i], single_turn(i), bodies, pass);
+            for_each_colour(tasks, [&](std::uint32_t g) { solve_wide(groups_[g], group_turn(g), bodies, pass); });
+        }
         bodies[0] = SolverBody<T>{};
     }
     /// take_approach_wide for the groups that bounce, once a substep (before its impulses).
@@ -486,21 +607,27 @@ private:
     /// beyond the lane's count. A full group zeroes only those (they are read, masked, up to the
     /// fullest lane's count); a group with padding lanes is zeroed whole. Zeroing every group
     /// first wrote its 2.1 KB (in float and in double) twice: the packing is bound by memory.
+    /// It also says whether the group turns levers (turned_moment), before its lanes are packed:
+    /// pack_lane writes the turning numbers of a group that turns only.
     void start_group(Group& c, const std::vector<ContactConstraint<T>>& rows, std::uint32_t begin, std::uint32_t end) const {
+        int fewest = 4, most = 0;
+        bool turns = false;
+        for (std::uint32_t i = begin; i < end; ++i) {
+            const ContactConstraint<T>& row = rows[colouring_.order[i]];
+            fewest = std::min(fewest, row.count);
+            most = std::max(most, row.count);
+            turns = turns || row.turns_a || row.turns_b;
+        }
         if (end - begin < static_cast<std::uint32_t>(width)) {
             c = empty<width>();
-            return;
+        } else {
+            for (int i = fewest; i < most; ++i) c.points[i] = WidePoint<typename Group::V>{};
+            c.max_count = 0;
+            c.min_count = 4;
+            c.rolls = false;
+            c.bounces = false;
         }
-        int fewest = 4, most = 0;
-        for (std::uint32_t i = begin; i < end; ++i) {
-            fewest = std::min(fewest, rows[colouring_.order[i]].count);
-            most = std::max(most, rows[colouring_.order[i]].count);
-        }
-        for (int i = fewest; i < most; ++i) c.points[i] = WidePoint<typename Group::V>{};
-        c.max_count = 0;
-        c.min_count = 4;
-        c.rolls = false;
-        c.bounces = false;
+        c.turns = turns;
     }
 
     template <int W>
@@ -512,10 +639,25 @@ private:
         return c;
     }
 
+    template <int W>
+    static const WideTurn<Wide<T, W>>* no_turn() {
+        return nullptr;
+    }
+    /// A group's WideTurn, read only where the group turns levers (null where none is kept).
+    const WideTurn<typename Group::V>* group_turn(std::uint32_t g) const {
+        return g < group_turns_.size() ? &group_turns_[g] : nullptr;
+    }
+    const WideTurn<typename Single::V>* single_turn(std::size_t i) const {
+        return i < single_turns_.size() ? &single_turns_[i] : nullptr;
+    }
+
     ConstraintColouring colouring_;
     std::vector<std::uint32_t> group_begin_;  ///< colours + 1 offsets into groups_
     std::vector<Group> groups_;
     std::vector<Single> overflow_;
+    bool turning_ = false;                                    ///< some group turns levers (build)
+    std::vector<WideTurn<typename Group::V>> group_turns_;    ///< by group, while some row turns levers (build)
+    std::vector<WideTurn<typename Single::V>> single_turns_;  ///< by overflow row, likewise
 };
 
 }  // namespace detail

@@ -592,7 +592,7 @@ private:
     void solve_substep(int sub, T h, detail::SolvePass<T>& pass);
     void prepare_solver_bodies(T h);
     void prepare_contact_rows(T h);
-    void contact_row(std::uint32_t m, const detail::Softness<T>& soft, const detail::Softness<T>& soft_static,
+    void contact_row(std::uint32_t m, const detail::Softness<T>& soft, const detail::Softness<T>& soft_static, T step,
                      detail::ContactConstraint<T>& c);
     static T twist_lever(Contact<T>& contact, T face_a, T face_b);
     void share_support_stiffness(T static_hertz, T h);
@@ -1984,6 +1984,7 @@ void World<T>::prepare_solver_bodies(T h) {
     order_solver_bodies_in_space();
     // Solver body k + 1 from solver_order_[k], each independently, so in parallel.
     const auto count = static_cast<std::uint32_t>(solver_order_.size());
+    const T step = h * static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
     solver_bodies_.resize(count + std::size_t(1));
     solver_masses_.resize(count + std::size_t(1));
     solver_slot_.resize(count + std::size_t(1));
@@ -2004,6 +2005,7 @@ void World<T>::prepare_solver_bodies(T h) {
             detail::SolverBody<T>& s = solver_bodies_[k + 1];
             s.v = detail::capped_length(b.linear_velocity_, integration_[k + 1].max_speed);
             s.w = detail::capped_spin(b.angular_velocity_, integration_[k + 1].spin_cap, Quat<T>::identity(), b.orientation_);
+            m.spins_far = length_squared(s.w) * step * step > detail::kFarTurn<T> * detail::kFarTurn<T>;
         }
     });
     stats_.awake_bodies = count;
@@ -2018,6 +2020,7 @@ void World<T>::prepare_contact_rows(T h) {
     const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
     const T static_hertz = std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h);
     const Softness<T> soft_static = Softness<T>::make(static_hertz, settings_.static_contact_damping_ratio, h);
+    const T step = h * static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
     // Which contacts get a row (in contact order), then the rows, independently of each other.
     row_contacts_.clear();
     bouncing_rows_.clear();
@@ -2036,13 +2039,18 @@ void World<T>::prepare_contact_rows(T h) {
         stats_.contact_points += static_cast<std::size_t>(contact.manifold.count);
     }
     constraints_.resize(row_contacts_.size());
+    std::atomic<bool> turning{false};  // some row turns its levers (contact_row)
     parallel_for(tasks_.get(), static_cast<std::uint32_t>(row_contacts_.size()), row_range,
                  [&](std::uint32_t begin, std::uint32_t end) {
-                     for (std::uint32_t r = begin; r < end; ++r)
-                         contact_row(row_contacts_[r], soft, soft_static, constraints_[r]);
+                     bool turns = false;
+                     for (std::uint32_t r = begin; r < end; ++r) {
+                         contact_row(row_contacts_[r], soft, soft_static, step, constraints_[r]);
+                         turns = turns || constraints_[r].turns_a || constraints_[r].turns_b;
+                     }
+                     if (turns) turning.store(true, std::memory_order_relaxed);
                  });
     share_support_stiffness(static_hertz, h);
-    wide_rows_.build(constraints_, solver_masses_, tasks_.get());
+    wide_rows_.build(constraints_, solver_masses_, turning.load(), tasks_.get());
     stats_.colours = wide_rows_.colours_used();
     stats_.overflow_contacts = wide_rows_.overflow_rows();
 }
@@ -2111,7 +2119,7 @@ void World<T>::share_support_stiffness(T static_hertz, T h) {
 /// written in place, the unused point slots zeroed: a row built by value was zeroed whole and
 /// then copied into constraints_ (352 bytes in float, 696 in double; 1 % of a pyramid's step).
 template <class T>
-void World<T>::contact_row(std::uint32_t m, const detail::Softness<T>& soft, const detail::Softness<T>& soft_static,
+void World<T>::contact_row(std::uint32_t m, const detail::Softness<T>& soft, const detail::Softness<T>& soft_static, T step,
                            detail::ContactConstraint<T>& c) {
     Contact<T>& contact = contacts_[m];
     const Body<T>& a = bodies_[contact.a.index];
@@ -2183,6 +2191,8 @@ void World<T>::contact_row(std::uint32_t m, const detail::Softness<T>& soft, con
     const detail::Roundness<T> round_b = detail::roundness(b, contact.child_b, c.normal);
     c.round_a = round_a.rolling;
     c.round_b = round_b.rolling;
+    c.turns_a = sa.spins_far && c.round_a == T(0) && detail::levers_turn_far(c, va.w, step, false);
+    c.turns_b = sb.spins_far && c.round_b == T(0) && detail::levers_turn_far(c, vb.w, step, true);
     c.twist_lever = twist_lever(contact, round_a.face, round_b.face);
     c.friction_1 = c.friction_2 = c.twist_impulse = T(0);
     if (settings_.warm_starting) {

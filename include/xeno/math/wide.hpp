@@ -27,12 +27,16 @@
 
 // The lane helpers are small and called in the solver's innermost loop with several registers
 // of arguments: a call would spill them all, so they are always inlined where the compiler allows.
+// XENO_WIDE_NOINLINE keeps a rarely taken path out of its caller's code.
 #if defined(__GNUC__) || defined(__clang__)
 #define XENO_WIDE_INLINE inline __attribute__((always_inline))
+#define XENO_WIDE_NOINLINE __attribute__((noinline))
 #elif defined(_MSC_VER)
 #define XENO_WIDE_INLINE __forceinline
+#define XENO_WIDE_NOINLINE __declspec(noinline)
 #else
 #define XENO_WIDE_INLINE inline
+#define XENO_WIDE_NOINLINE
 #endif
 
 namespace xeno {
