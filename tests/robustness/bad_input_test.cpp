@@ -592,3 +592,13 @@ TEST_CASE_TEMPLATE(
     CHECK_REJECTED(world.set_joint_motor(joint, true, too_fast, T(100)), "World::set_joint_motor", "speed");
     CHECK(world.joint(joint).motor_speed == detail::max_setting_length<T>());
 }
+
+// regression: a sphere query with a radius past the size range was refused by the Sphere it
+// builds, under the name "Sphere", not the call the user made.
+TEST_CASE_TEMPLATE("overlap_sphere names itself for a radius outside the size range", T, float, double) {
+    World<T> w;
+    for (const T radius : {ScalarTraits<T>::max_size * T(10), ScalarTraits<T>::min_size / T(10)}) {
+        CAPTURE(radius);
+        CHECK_REJECTED(w.overlap_sphere(Vec3<T>{}, radius), "World::overlap_sphere", "radius");
+    }
+}

@@ -347,12 +347,14 @@ public:
     std::optional<WorldRayHit<T>> raycast_any(const Ray<T>& ray, const QueryFilter<T>& filter = {}) const;
     /// Every body the ray hits, nearest first.
     std::vector<WorldRayHit<T>> raycast_all(const Ray<T>& ray, const QueryFilter<T>& filter = {}) const;
-    /// The bodies whose shape contains the point (surface included).
+    /// The bodies whose shape contains the point (surface included). A mesh or heightfield body
+    /// has no inside: it is never reported.
     std::vector<BodyId> query_point(const Vec3<T>& point, const QueryFilter<T>& filter = {}) const;
     /// The bodies whose tight bounding box overlaps the box (touching counts). The box must be
     /// finite with min <= max on every axis (InvalidArgument otherwise).
     std::vector<BodyId> query_aabb(const Aabb<T>& box, const QueryFilter<T>& filter = {}) const;
-    /// The bodies a sphere overlaps (intersect(): touching is not overlapping). radius > 0.
+    /// The bodies a sphere overlaps (intersect(): touching is not overlapping). radius within the
+    /// size range of T (as a Sphere's).
     std::vector<BodyId> overlap_sphere(const Vec3<T>& center, T radius, const QueryFilter<T>& filter = {}) const;
     /// The bodies a convex shape at a pose overlaps (intersect(): touching is not overlapping).
     std::vector<BodyId> overlap_shape(const Shape<T>& shape, const Transform<T>& pose, const QueryFilter<T>& filter = {}) const;

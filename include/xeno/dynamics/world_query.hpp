@@ -132,7 +132,7 @@ std::vector<BodyId> World<T>::query_aabb(const Aabb<T>& box, const QueryFilter<T
 template <class T>
 std::vector<BodyId> World<T>::overlap_sphere(const Vec3<T>& center, T radius, const QueryFilter<T>& filter) const {
     detail::require_finite_xyz(center, "World::overlap_sphere", "center");
-    detail::require_positive(radius, "World::overlap_sphere", "radius");
+    detail::require_size(radius, "World::overlap_sphere", "radius");  // Sphere's check, under this call's name
     return overlap_shape(Sphere<T>(radius), Transform<T>{center, Quat<T>{}}, filter);
 }
 
