@@ -102,7 +102,7 @@ XENO_WIDE_INLINE WideVec3<Wide<T, W>> turned_moment(const Wide<T, W>& lanes, con
 
 /// The turned value in the routines compiled for groups that turn levers, else the stored one,
 /// read where it is used (Turning false is the code, and the bytes read, of fixed levers alone:
-/// a copy held in registers made the box pyramid's solve 18 % slower).
+/// a copy of the stored moments held in registers made the box pyramid's solve 11 % slower).
 template <bool Turning, class X>
 XENO_WIDE_INLINE const X& pick(const X& turned, const X& fixed) {
     if constexpr (Turning) return turned;
@@ -115,6 +115,16 @@ struct WideBody {
     WideVec3<V> v, w, dp;
     WideQuat<V> dq;
 };
+
+/// A point's moments r × n of both sides with turned levers (turned_moment), into rn_a, rn_b.
+template <class T, int W>
+XENO_WIDE_INLINE void turned_point_moments(const WideContact<T, W>& c, const WideTurn<Wide<T, W>>& t,
+                                           const WidePoint<Wide<T, W>>& p, const WideBody<Wide<T, W>>& A,
+                                           const WideBody<Wide<T, W>>& B, WideVec3<Wide<T, W>>& rn_a,
+                                           WideVec3<Wide<T, W>>& rn_b) {
+    rn_a = turned_moment(t.turn_a, p.rn_a, A.dq, p.r_a, c.normal);
+    rn_b = turned_moment(t.turn_b, p.rn_b, B.dq, p.r_b, c.normal);
+}
 
 /// The friction rows' moments rc × t1, rc × t2 of both sides with turned levers (turned_moment).
 template <class V>
@@ -200,10 +210,7 @@ void warm_start_group(const WideContact<T, W>& c, const WideTurn<Wide<T, W>>* t,
         const typename V::Mask active = V::splat(T(i)) < c.count;
         const V pushed = push + p.normal_impulse;
         WideVec3<V> turned_a, turned_b;
-        if constexpr (Turning) {
-            turned_a = turned_moment(t->turn_a, p.rn_a, A.dq, p.r_a, c.normal);
-            turned_b = turned_moment(t->turn_b, p.rn_b, B.dq, p.r_b, c.normal);
-        }
+        if constexpr (Turning) turned_point_moments(c, *t, p, A, B, turned_a, turned_b);
         const WideVec3<V>& rn_a = pick<Turning>(turned_a, p.rn_a);
         const WideVec3<V>& rn_b = pick<Turning>(turned_b, p.rn_b);
         const WideVec3<V> ta = turn_a + rn_a * p.normal_impulse, tb = turn_b + rn_b * p.normal_impulse;
@@ -226,11 +233,17 @@ void warm_start_group(const WideContact<T, W>& c, const WideTurn<Wide<T, W>>* t,
     scatter<T, W>(A, bodies, c.a);
     scatter<T, W>(B, bodies, c.b);
 }
-/// `t`: the group's WideTurn where it turns levers (c.turns), else unread.
+/// The warm start of a group with fixed levers; of any group, `t` its WideTurn where it turns
+/// levers (c.turns). WideContactRows calls warm_start_fixed alone while no group turns (as
+/// solve_fixed).
+template <class T, int W>
+void warm_start_fixed(const WideContact<T, W>& c, std::vector<SolverBody<T>>& bodies) {
+    warm_start_group<false>(c, static_cast<const WideTurn<Wide<T, W>>*>(nullptr), bodies);
+}
 template <class T, int W>
 void warm_start_wide(const WideContact<T, W>& c, const WideTurn<Wide<T, W>>* t, std::vector<SolverBody<T>>& bodies) {
     if (c.turns) warm_start_group<true>(c, t, bodies);
-    else warm_start_group<false>(c, t, bodies);
+    else warm_start_fixed(c, bodies);
 }
 
 /// Restitution's approach speed at the impact: each point's v_n at the start of the step plus
@@ -310,10 +323,7 @@ XENO_WIDE_INLINE Wide<T, W> sweep_normal_rows(WideContact<T, W>& c, const WideTu
         impulse_scale = select(speculative, zero, impulse_scale);
 
         WideVec3<V> turned_a, turned_b;
-        if constexpr (Turning) {
-            turned_a = turned_moment(t->turn_a, p.rn_a, A.dq, p.r_a, c.normal);
-            turned_b = turned_moment(t->turn_b, p.rn_b, B.dq, p.r_b, c.normal);
-        }
+        if constexpr (Turning) turned_point_moments(c, *t, p, A, B, turned_a, turned_b);
         const WideVec3<V>& rn_a = pick<Turning>(turned_a, p.rn_a);
         const WideVec3<V>& rn_b = pick<Turning>(turned_b, p.rn_b);
         const V vn = dot(B.v - A.v, c.normal) + dot(B.w, rn_b) - dot(A.w, rn_a);
@@ -543,12 +553,12 @@ public:
     /// The overflow rows one by one, then each colour's groups through `tasks` (a colour's groups
     /// share no moving body, so they may run at once; the colours run one after another).
     void warm_start(std::vector<SolverBody<T>>& bodies, TaskSystem* tasks) const {
-        if (!turning_) {  // (as solve)
-            for (const Single& c : overflow_) warm_start_group<false>(c, no_turn<1>(), bodies);
-            for_each_colour(tasks, [&](std::uint32_t g) { warm_start_group<false>(groups_[g], no_turn<width>(), bodies); });
+        if (!turning_) {
+            for (const Single& c : overflow_) warm_start_fixed(c, bodies);
+            for_each_colour(tasks, [&](std::uint32_t g) { warm_start_fixed(groups_[g], bodies); });
         } else {
-            for (std::size_t i = 0; i < overflow_.size(); ++i) warm_start_wide(overflow_[i], single_turn(i), bodies);
-            for_each_colour(tasks, [&](std::uint32_t g) { warm_start_wide(groups_[g], group_turn(g), bodies); });
+            for (std::size_t i = 0; i < overflow_.size(); ++i) warm_start_wide(overflow_[i], &single_turns_[i], bodies);
+            for_each_colour(tasks, [&](std::uint32_t g) { warm_start_wide(groups_[g], &group_turns_[g], bodies); });
         }
         bodies[0] = SolverBody<T>{};
     }
@@ -557,8 +567,8 @@ public:
             for (Single& c : overflow_) solve_fixed(c, bodies, pass);
             for_each_colour(tasks, [&](std::uint32_t g) { solve_fixed(groups_[g], bodies, pass); });
         } else {
-            for (std::size_t i = 0; i < overflow_.size(); ++i) solve_wide(overflow_[i], single_turn(i), bodies, pass);
-            for_each_colour(tasks, [&](std::uint32_t g) { solve_wide(groups_[g], group_turn(g), bodies, pass); });
+            for (std::size_t i = 0; i < overflow_.size(); ++i) solve_wide(overflow_[i], &single_turns_[i], bodies, pass);
+            for_each_colour(tasks, [&](std::uint32_t g) { solve_wide(groups_[g], &group_turns_[g], bodies, pass); });
         }
         bodies[0] = SolverBody<T>{};
     }
@@ -639,25 +649,13 @@ private:
         return c;
     }
 
-    template <int W>
-    static const WideTurn<Wide<T, W>>* no_turn() {
-        return nullptr;
-    }
-    /// A group's WideTurn, read only where the group turns levers (null where none is kept).
-    const WideTurn<typename Group::V>* group_turn(std::uint32_t g) const {
-        return g < group_turns_.size() ? &group_turns_[g] : nullptr;
-    }
-    const WideTurn<typename Single::V>* single_turn(std::size_t i) const {
-        return i < single_turns_.size() ? &single_turns_[i] : nullptr;
-    }
-
     ConstraintColouring colouring_;
     std::vector<std::uint32_t> group_begin_;  ///< colours + 1 offsets into groups_
     std::vector<Group> groups_;
     std::vector<Single> overflow_;
-    bool turning_ = false;                                    ///< some group turns levers (build)
-    std::vector<WideTurn<typename Group::V>> group_turns_;    ///< by group, while some row turns levers (build)
-    std::vector<WideTurn<typename Single::V>> single_turns_;  ///< by overflow row, likewise
+    bool turning_ = false;  ///< some group turns levers (build); then the two lists below are filled
+    std::vector<WideTurn<typename Group::V>> group_turns_;    ///< by group
+    std::vector<WideTurn<typename Single::V>> single_turns_;  ///< by overflow row
 };
 
 }  // namespace detail
