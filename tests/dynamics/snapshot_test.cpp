@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 //
 // Snapshots: stepping after a restore is bitwise identical to stepping the original.
+#include "robustness/state_hash.hpp"
 #include "support/approx.hpp"
 #include "support/sim.hpp"
 
@@ -16,25 +17,9 @@
 #include <string>
 
 using namespace xeno;
+using xeno::test::state_hash;
 
 namespace {
-// FNV-1a over the raw bytes of every body's pose and velocities, in slot order.
-template <class T>
-std::uint64_t state_hash(const World<T>& w) {
-    std::uint64_t h = 1469598103934665603ull;
-    auto mix = [&](const void* p, std::size_t n) {
-        const auto* b = static_cast<const unsigned char*>(p);
-        for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-    };
-    w.for_each_body([&](BodyId id, const Body<T>& b) {
-        mix(&id.index, sizeof id.index);
-        mix(&b.position(), sizeof(Vec3<T>));
-        mix(&b.orientation(), sizeof(Quat<T>));
-        mix(&b.linear_velocity(), sizeof(Vec3<T>));
-        mix(&b.angular_velocity(), sizeof(Vec3<T>));
-    });
-    return h;
-}
 template <class T>
 std::vector<std::uint64_t> run(World<T>& w, int steps) {
     std::vector<std::uint64_t> hashes;
