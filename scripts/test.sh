@@ -70,7 +70,7 @@ step "clang++ with AddressSanitizer and UndefinedBehaviorSanitizer, -Werror: hea
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 configure_and_test clang-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
   -DXENO_BUILD_BENCH=OFF -DXENO_BUILD_EXAMPLES=OFF -DXENO_BUILD_HEADER_CHECK=ON -DXENO_BUILD_FUZZ=ON -DXENO_SANITIZE=ON \
-  -DXENO_UNIT_TEST_OPTIMIZATION=-O0 -DXENO_HEAVY_TEST_OPTIMIZATION= -DXENO_TESTS_PER_FILE=ON -DXENO_COMPILE_CHECK_ONLY=ON \
+  -DXENO_UNIT_TEST_OPTIMIZATION=-O0 -DXENO_REFERENCE_TEST_OPTIMIZATION= -DXENO_TESTS_PER_FILE=ON -DXENO_COMPILE_CHECK_ONLY=ON \
   "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 
 step "clang++: a header-only Release build steps every scene to g++'s state hashes; ThreadSanitizer on the tests that step on several workers"

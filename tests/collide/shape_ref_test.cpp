@@ -58,7 +58,7 @@ Typed<T> typed_queries(const SA& sa, const Transform<T>& pa, const SB& sb, const
 }
 
 template <class T>
-void check_random_pairs() {
+void check_typed_random_pairs() {
     test::RandomPairs pairs(29, 0.05, 2.0, 10.0);
     pairs.set_touching_fraction(0.2);
     const test::ShapeMaker<T> maker(pairs);
@@ -122,7 +122,7 @@ void check_mesh_triangle() {
 }  // namespace
 
 TEST_CASE_TEMPLATE("MPR pairs through ShapeRef give the per-pair instantiations' bits (3,000 random pairs)", T, float, double) {
-    check_random_pairs<T>();
+    check_typed_random_pairs<T>();
 }
 
 TEST_CASE_TEMPLATE("mesh triangles through ShapeRef give the per-kind instantiations' bits", T, float, double) {
