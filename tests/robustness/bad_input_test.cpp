@@ -602,3 +602,75 @@ TEST_CASE_TEMPLATE("overlap_sphere names itself for a radius outside the size ra
         CHECK_REJECTED(w.overlap_sphere(Vec3<T>{}, radius), "World::overlap_sphere", "radius");
     }
 }
+
+TEST_CASE_TEMPLATE("regression: limits of a joint whose limit is off and the density of a static body are checked when given", T,
+                   float, double) {
+    // Both were kept unchecked (a hinge's NaN lower angle, a slider's lower limit above its upper,
+    // a static or kinematic body's NaN density), and the world's own snapshot could not be restored.
+    World<T> world;
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    const BodyId base = world.create_body(Box<T>(T(1), T(1), T(1)), d);
+    d.type = BodyType::dynamic;
+    d.position = {T(0), T(3), T(0)};
+    const BodyId arm = world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    JointDef<T> hinge = JointDef<T>::hinge(base, arm, {T(0), T(2), T(0)}, {T(0), T(0), T(1)});
+    hinge.lower_angle = std::numeric_limits<T>::quiet_NaN();
+    CHECK_REJECTED(world.create_joint(hinge), "World::create_joint", "lower limit must be finite");
+    JointDef<T> slider = JointDef<T>::prismatic(base, arm, {T(0), T(2), T(0)}, {T(0), T(1), T(0)});
+    slider.lower_translation = T(1);
+    slider.upper_translation = T(-1);
+    CHECK_REJECTED(world.create_joint(slider), "World::create_joint", "lower limit must be <= the upper");
+    for (const BodyType type : {BodyType::static_body, BodyType::kinematic}) {
+        BodyDef<T> still;
+        still.type = type;
+        still.density = std::numeric_limits<T>::quiet_NaN();
+        CHECK_REJECTED(world.create_body(Sphere<T>(T(1)), still), "World::create_body", "density must be a number");
+    }
+    CHECK(world.body_count() == 2);
+
+    // What is accepted round-trips: a hinge with its limit off (the first joint: none was half
+    // made), a static body of density 0.
+    const JointId joint = world.create_joint(JointDef<T>::hinge(base, arm, {T(0), T(2), T(0)}, {T(0), T(0), T(1)}));
+    CHECK(joint.index == 0);
+    d.type = BodyType::static_body;
+    d.density = T(0);
+    d.position = {T(5), T(0), T(0)};
+    world.create_body(Box<T>(T(1), T(1), T(1)), d);
+    World<T> copy;
+    restore_snapshot(copy, save_snapshot(world));
+    CHECK(copy.body_count() == 3);
+    CHECK(copy.contains(joint));
+}
+
+TEST_CASE_TEMPLATE("regression: a mass beyond max_mass is rejected, a box of max_mass lands on the floor and rests", T, float,
+                   double) {
+    // Accepted before (any mass whose inverse is finite): a float box of 8e37 kg landing at 7 m/s
+    // took an infinite impulse, the step was discarded, and it froze in mid-air.
+    World<T> world;
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    d.position = {T(0), T(-0.5), T(0)};
+    world.create_body(Box<T>(T(5), T(0.5), T(5)), d);
+    d = {};
+    d.position = {T(0), T(3), T(0)};
+    const T over = std::is_same_v<T, float> ? T(8e37) : T(8e307);
+    d.mass = over;
+    CHECK_REJECTED(world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d), "World::create_body", "max_mass");
+    d.mass = T(0);
+    const BodyId id = world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    MassProperties<T> m = mass_properties(Box<T>(T(0.5), T(0.5), T(0.5)), T(1000));
+    const T scale = over / m.mass;
+    m.mass = over;
+    m.inertia = m.inertia * scale;
+    CHECK_REJECTED(world.body(id).set_mass_properties(m), "Body::set_mass_properties", "max_mass");
+    CHECK(world.body(id).mass() == doctest::Approx(1000));
+    m.mass = detail::max_mass<T>();
+    m.inertia = m.inertia * (m.mass / over);
+    world.body(id).set_mass_properties(m);
+    for (int i = 0; i < 120; ++i) world.step(T(1) / T(60));
+    const Body<T>& b = world.body(id);
+    CHECK(is_finite(b.linear_velocity()));
+    CHECK(b.position().y == doctest::Approx(0.5).epsilon(0.01));
+    CHECK(length(b.linear_velocity()) < T(0.01));
+}

@@ -299,6 +299,41 @@ TEST_CASE_TEMPLATE("regression: lengths and speeds in the settings beyond their 
     CHECK(non_finite_bodies(world) == 0);
 }
 
+// A damping ratio is any finite ζ ≥ 0; one near the top of T's range overflowed the softness
+// (2ζ + hω), the step was discarded as an overflow and every body in contact or on a joint froze.
+// As ζ → ∞ a row is rigid and corrects no position error: a box lands on a box and stays, a
+// pendulum swings on its ball joint.
+TEST_CASE_TEMPLATE("regression: damping ratios at the top of the range of T damp fully, not freeze the bodies", T, float,
+                   double) {
+    WorldSettings<T> s;
+    s.contact_damping_ratio = std::numeric_limits<T>::max();
+    s.static_contact_damping_ratio = std::numeric_limits<T>::max();
+    s.joint_damping_ratio = std::numeric_limits<T>::max();
+    World<T> world(s);
+    BodyDef<T> def;
+    def.type = BodyType::static_body;
+    def.position = {T(0), T(-0.5), T(0)};
+    const BodyId floor = world.create_body(Box<T>(T(10), T(0.5), T(10)), def);
+    def.type = BodyType::dynamic;
+    def.position = {T(0), T(0.5), T(0)};
+    const BodyId lower = world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+    def.position = {T(0), T(2.5), T(0)};
+    const BodyId upper = world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+    def.position = {T(4), T(3), T(1)};  // 1 m from its anchor, level with it: it swings down
+    const BodyId bob = world.create_body(Sphere<T>(T(0.2)), def);
+    world.create_joint(JointDef<T>::ball(floor, bob, {T(4), T(3), T(0)}));
+    T lowest = T(3);
+    for (int i = 0; i < 120; ++i) {
+        world.step(T(1) / T(60));
+        lowest = std::min(lowest, world.body(bob).position().y);
+    }
+    CHECK(non_finite_bodies(world) == 0);
+    CHECK(world.body(lower).position().y == doctest::Approx(0.5).epsilon(0.002));
+    CHECK(world.body(upper).position().y == doctest::Approx(1.5).epsilon(0.002));
+    CHECK(lowest < T(2.1));  // the bottom of the swing is 2 m
+    CHECK(length(world.body(bob).position() - Vec3<T>{T(4), T(3), T(0)}) == doctest::Approx(1).epsilon(0.02));
+}
+
 // 10. Settings enums and counts -------------------------------------------------------------------
 
 TEST_CASE_TEMPLATE("regression: settings reject unknown enum values and iteration counts that make a step endless", T, float,

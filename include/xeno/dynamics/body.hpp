@@ -18,6 +18,7 @@
 #include "../shape/mesh_shape.hpp"
 #include "../shape/shape.hpp"
 #include "material.hpp"
+#include "settings.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -420,6 +421,9 @@ T speed_per_impulse(const Body<T>& b, T spin, T lever = T(0)) {  ///< at `lever`
 template <class T>
 void check_mass_properties(const MassProperties<T>& m, T radius, const char* where) {
     require_positive(m.mass, where, "mass");
+    if (m.mass > max_mass<T>())
+        report_invalid(where, "mass must be at most detail::max_mass (8.5e31 kg in float, 4.5e277 in double); mass",
+                       static_cast<double>(m.mass));
     if (!std::isfinite(T(1) / m.mass))
         report_invalid(where, "mass must be large enough for 1 / mass to be finite in this precision; mass",
                        static_cast<double>(m.mass));

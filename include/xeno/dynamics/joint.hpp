@@ -46,7 +46,9 @@ struct JointId {
     friend bool operator!=(JointId a, JointId b) { return !(a == b); }
 };
 
-/// Everything needed to create a joint; world-frame anchor and axis at creation time.
+/// Everything needed to create a joint; world-frame anchor and axis at creation time. A hinge's or
+/// slider's limits are checked (finite, lower <= upper) and kept even while enable_limit is off:
+/// set_joint_limits may turn them on, and a snapshot holds them.
 template <class T>
 struct JointDef {
     JointType type = JointType::ball;

@@ -12,6 +12,8 @@
 
 #include "../math/quat.hpp"
 
+#include <limits>
+
 namespace xeno {
 namespace detail {
 
@@ -63,6 +65,10 @@ struct Softness {
         const T omega = T(2) * ScalarTraits<T>::pi * hertz;
         const T a1 = T(2) * zeta + h * omega;
         const T a2 = h * omega * a1;
+        // Any finite ratio ζ ≥ 0 is accepted, and one near the top of T's range overflows a1 or a2
+        // (a2 · a3 was then ∞ · 0, NaN, and the step was discarded: bodies froze). The limit as
+        // ζ → ∞: a rigid velocity row that corrects no position error.
+        if (!(a2 <= std::numeric_limits<T>::max())) return {T(0), T(1), T(0)};
         const T a3 = T(1) / (T(1) + a2);
         return {omega / a1, a2 * a3, a3};
     }

@@ -198,7 +198,7 @@ public:
 
     /// Creates a body of the given (shared) shape. Checks the definition at the door: finite
     /// pose and velocities, non-zero orientation (normalised), positive density or mass for
-    /// dynamic bodies, a shape whose centre of mass is its local origin.
+    /// dynamic bodies (a number for the others), a shape whose centre of mass is its local origin.
     BodyId create_body(std::shared_ptr<const Shape<T>> shape, const BodyDef<T>& def = {});
     /// Convenience: the shape is copied into a new shared shape.
     BodyId create_body(const Shape<T>& shape, const BodyDef<T>& def = {});
@@ -818,6 +818,9 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
         detail::require_non_negative(def.mass, where, "mass");
         detail::require_positive(def.density, where, "density");
         mass = dynamic_mass(shape.get(), compound.get(), def.density, def.mass, where);
+    } else if (std::isnan(def.density)) {  // kept for set_type, which checks it; a snapshot must hold a number
+        detail::report_invalid(where, "density must be a number (kept for when the body becomes dynamic)",
+                               static_cast<double>(def.density));
     }
     if (free_slots_.empty()) {  // grow the tables first, so an allocation failure changes nothing
         const auto make_room = [](auto& table) {

@@ -27,7 +27,7 @@ void World<T>::set_axis_limit_motor(Joint<T>& j, const JointDef<T>& def, const B
     const bool slider = def.type == JointType::prismatic;
     const T lower = slider ? def.lower_translation : def.lower_angle;
     const T upper = slider ? def.upper_translation : def.upper_angle;
-    if (def.enable_limit || def.type == JointType::swing_twist) check_limits(lower, upper, where);
+    check_limits(lower, upper, where);  // kept, and restored from snapshots, even while the limit is off
     if (def.type == JointType::swing_twist) {
         if (!(def.cone_angle >= T(0) && def.cone_angle <= ScalarTraits<T>::pi))
             detail::report_invalid(where, "cone_angle must be within [0, pi] rad", static_cast<double>(def.cone_angle));
