@@ -506,7 +506,11 @@ class WideContactRows {
 public:
     static constexpr int width = native_width<T>();
     using Group = WideContact<T, width>;
-    using Single = WideContact<T, 1>;
+    // An overflow row is a group of one row, its other lanes padding as a colour's last group's
+    // may be: a lane's numbers do not depend on its neighbours, so the bits are those of a
+    // one-lane row, and the kernels are compiled for one width only (width 1 as well cost
+    // hello_world 6 % of its code and about 5 % of its -O2 compile; docs/benchmarks.md).
+    using Single = Group;
 
     /// Colours and packs `rows` (their bodies' masses frozen in `masses`); the packing of the
     /// groups runs through `tasks` (task_system.hpp). `turning`: some row turns its levers
@@ -543,7 +547,7 @@ public:
         overflow_.clear();
         single_turns_.clear();
         for (const std::uint32_t row : colouring_.overflow) {
-            overflow_.push_back(empty<1>());
+            overflow_.push_back(empty<width>());
             overflow_.back().turns = rows[row].turns_a || rows[row].turns_b;
             pack_lane(overflow_.back(), 0, row, rows[row], masses);
             if (turning) pack_turn(single_turns_.emplace_back(), 0, rows[row]);
