@@ -378,14 +378,27 @@ void workers_table(unsigned workers, bool quick) {
     std::printf("after the rows, a round trip between two threads takes %.0f ns\n", core_round_trip_ns());
 }
 
+void memory_table(bool quick) {
+    std::printf(
+        "\nMemory (counting allocator, world.reserve() called; bodies share one shape). 'Between steps' is the\n"
+        "world's state; 'during a step' adds the solver's scratch (per awake body and per manifold).\n");
+    std::printf("thesis (Quadro 25): 1,274 bytes/body, 380 bytes/touching pair\n");
+    for (int n : {10, 100, 1000, 10000, 100000}) {
+        if (quick && n > 10000) break;
+        memory_row<float>(n);
+        memory_row<double>(n);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, piles = false;
+    bool quick = false, piles = false, memory = false;
     unsigned workers = 0;
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--quick") == 0) quick = true;
         else if (std::strcmp(argv[i], "--piles") == 0) piles = true;
+        else if (std::strcmp(argv[i], "--memory") == 0) memory = true;
         else if (std::strcmp(argv[i], "--workers") == 0 && i + 1 < argc) {
             const long n = std::strtol(argv[++i], nullptr, 10);
             if (n < 2 || n > 256) {
@@ -395,7 +408,8 @@ int main(int argc, char** argv) {
             workers = static_cast<unsigned>(n);
         } else if (std::strcmp(argv[i], "--help") == 0) {
             std::printf(
-                "usage: xeno_step_bench [--quick] [--workers N] [--piles]\n"
+                "usage: xeno_step_bench [--quick] [--workers N] [--piles] [--memory]\n"
+                "  --memory: only the memory table\n"
                 "  --piles: only the dropped piles of 500 to 4,000 boxes, stepped until they sleep (docs/features.md)\n");
             return 0;
         } else {
@@ -405,6 +419,10 @@ int main(int argc, char** argv) {
     }
     if (workers > 0) {
         workers_table(workers, quick);
+        return 0;
+    }
+    if (memory) {
+        memory_table(quick);
         return 0;
     }
     if (piles) {  // how long dropped piles take to fall asleep (docs/features.md, "Rocking in place")
@@ -432,14 +450,6 @@ int main(int argc, char** argv) {
         sleep_row<float>(quick ? 400 : 4000, block);
         sleep_row<double>(quick ? 400 : 4000, block);
     }
-    std::printf(
-        "\nMemory (counting allocator, world.reserve() called; bodies share one shape). 'Between steps' is the\n"
-        "world's state; 'during a step' adds the solver's scratch (per awake body and per manifold).\n");
-    std::printf("thesis (Quadro 25): 1,274 bytes/body, 380 bytes/touching pair\n");
-    for (int n : {10, 100, 1000, 10000, 100000}) {
-        if (quick && n > 10000) break;
-        memory_row<float>(n);
-        memory_row<double>(n);
-    }
+    memory_table(quick);
     return 0;
 }

@@ -60,7 +60,7 @@ struct BodyDef {
     T linear_damping = T(0);   ///< 1/s: v decays as 1/(1 + c dt) per step
     T angular_damping = T(0);  ///< 1/s
     T gravity_scale = T(1);
-    bool fast = false;  ///< continuous collision against static and kinematic bodies; speed cap 1e6 m/s (float), 1e30 (double)
+    bool fast = false;  ///< continuous collision against static and kinematic bodies; speed cap 1e6 m/s (float), 1e10 (double)
     bool allow_sleep = true;                 ///< false keeps the body (and its island) awake
     bool sensor = false;                     ///< reports overlaps, never pushes or is pushed
     std::uint32_t layer = 1;                 ///< collision layer bits of this body

@@ -568,10 +568,11 @@ private:
         return b.type_ == BodyType::kinematic &&
                (length_squared(b.linear_velocity_) > T(0) || length_squared(b.angular_velocity_) > T(0));
     }
-    /// The speed cap of the integrator: the settings' for most bodies, 1e6 m/s (float) for fast ones.
     /// A joint acts while it lives and both its bodies are enabled (set_enabled).
     bool joint_active(const Joint<T>& j) const { return j.alive && bodies_[j.a.index].enabled_ && bodies_[j.b.index].enabled_; }
-    T speed_limit(const Body<T>& b) const { return b.fast_ ? detail::max_setting_length<T>() : settings_.max_linear_speed; }
+    /// The speed cap of the integrator: the settings' for most bodies, detail::max_fast_speed for
+    /// fast ones (1e6 m/s in float, 1e10 in double).
+    T speed_limit(const Body<T>& b) const { return b.fast_ ? detail::max_fast_speed<T>() : settings_.max_linear_speed; }
     detail::SpinCap<T> spin_cap(const Body<T>& b, T dt) const;
     /// m/s²: what gravity and the applied force do to b's velocity (zero unless dynamic and awake).
     Vec3<T> free_acceleration(const Body<T>& b) const {
@@ -695,7 +696,8 @@ private:
     std::shared_ptr<const Listener> listener_;      ///< shared: a running listener outlives its replacement
     std::function<bool(BodyId, BodyId)> filter_;
     T accumulator_{};
-    T last_substep_{};  ///< s: the last step's substep, for joint_reaction
+    T last_substep_{};      ///< s: the last step's substep, for joint_reaction
+    T fastest_approach_{};  ///< m/s: the step's fastest approach of a contact point (prepare), for the impact sweeps
     // Scratch kept between steps so a settled step allocates nothing.
     std::vector<Contact<T>> next_contacts_;  ///< narrow phase output, swapped with contacts_
     std::vector<PairWork> pair_work_;        ///< per broad-phase pair (narrow phase)
@@ -2045,15 +2047,27 @@ void World<T>::prepare_contact_rows(T h) {
     }
     constraints_.resize(row_contacts_.size());
     std::atomic<bool> turning{false};  // some row turns its levers (contact_row)
-    parallel_for(tasks_.get(), static_cast<std::uint32_t>(row_contacts_.size()), row_range,
-                 [&](std::uint32_t begin, std::uint32_t end) {
-                     bool turns = false;
-                     for (std::uint32_t r = begin; r < end; ++r) {
-                         contact_row(row_contacts_[r], soft, soft_static, step, constraints_[r]);
-                         turns = turns || constraints_[r].turns_a || constraints_[r].turns_b;
-                     }
-                     if (turns) turning.store(true, std::memory_order_relaxed);
-                 });
+    std::atomic<bool> impact{false};   // some point approaches faster than the impact sweeps' threshold
+    parallel_for(
+        tasks_.get(), static_cast<std::uint32_t>(row_contacts_.size()), row_range, [&](std::uint32_t begin, std::uint32_t end) {
+            bool turns = false, fast = false;
+            for (std::uint32_t r = begin; r < end; ++r) {
+                const detail::ContactConstraint<T>& c = constraints_[r];
+                contact_row(row_contacts_[r], soft, soft_static, step, constraints_[r]);
+                turns = turns || c.turns_a || c.turns_b;
+                for (int i = 0; i < c.count; ++i)
+                    fast = fast || c.points[static_cast<std::size_t>(i)].relative_velocity < -T(detail::impact_sweep_speed);
+            }
+            if (turns) turning.store(true, std::memory_order_relaxed);
+            if (fast) impact.store(true, std::memory_order_relaxed);
+        });
+    // The fastest approach, found again in row order only when some point is past the threshold
+    // (a rare step): a maximum, so the same whichever worker saw it first.
+    fastest_approach_ = T(0);
+    if (impact.load())
+        for (const detail::ContactConstraint<T>& c : constraints_)
+            for (int i = 0; i < c.count; ++i)
+                fastest_approach_ = std::max(fastest_approach_, -c.points[static_cast<std::size_t>(i)].relative_velocity);
     share_support_stiffness(static_hertz, h);
     wide_rows_.build(constraints_, solver_masses_, turning.load(), tasks_.get());
     stats_.colours = wide_rows_.colours_used();
@@ -2337,10 +2351,12 @@ void World<T>::solve_substep(int sub, T h, detail::SolvePass<T>& pass) {
     // off at a steady speed (docs/solver.md, "Releasing a load").
     const int relax = soft && sub == 0 ? settings_.first_relax_iterations : settings_.relax_iterations;
     pass.use_bias = true;
-    for (int it = 0; it < settings_.velocity_iterations; ++it) {
+    // More sweeps in a step that brings a very fast impact (settings.hpp, detail::biased_sweeps).
+    const int sweeps = detail::biased_sweeps(settings_.velocity_iterations, fastest_approach_);
+    for (int it = 0; it < sweeps; ++it) {
         // The substep's last pass adds each point's impulse to its step total (for events
         // and restitution), inside the solve so that each worker does it for its own rows.
-        pass.last_of_substep = relax == 0 && it + 1 == settings_.velocity_iterations;
+        pass.last_of_substep = relax == 0 && it + 1 == sweeps;
         // Joints after contacts: a limb's limit then answers the impulse its landing just took
         // (before them, a ragdoll landed 4.5° past a cone at 8 substeps; docs/solver.md).
         wide_rows_.solve(solver_bodies_, pass, tasks_.get());
