@@ -212,13 +212,64 @@ struct NormalGroup {
 
 }  // namespace detail
 
+namespace detail {
+
+/// Sweeps convex shape A (`shape`, its ShapeRef) from pose_a along `translation` against one
+/// triangle (in the same frame): where A first touches it, from either side.
+template <class T>
+std::optional<ShapeCastHit<T>> cast_triangle(const ShapeRef<T>& shape, const Transform<T>& pose_a, const Vec3<T>& translation,
+                                             const MeshTriangle<T>& placed) {
+    const Vec3<T> centre_a = pose_a.apply(shape.interior_point());
+    const Triangle<T> tri(placed, closest_point_on_triangle(centre_a, placed.v[0], placed.v[1], placed.v[2]));
+    const auto cast = [&](const Transform<T>& from, const Vec3<T>& move) {
+        const Vec3<T> origin = from.position;
+        const auto support_c = [&](const Vec3<T>& v) {
+            CastVertex<T> p;
+            p.a = rotate(from.orientation, shape.support(inverse_rotate(from.orientation, -v)));
+            p.b = tri.support(v) - origin;
+            p.c = p.b - p.a;
+            return p;
+        };
+        const T size = shape.bounding_radius() + tri.bounding_radius() + length(move) + length(tri.interior_point() - origin);
+        const Vec3<T> inside_a = from.apply(shape.interior_point());
+        return gjk_cast(support_c, tri.interior_point() - inside_a, size, from, move,
+                        [&](const Transform<T>& at) { return collide_pair(shape, at, tri, Transform<T>{}); });
+    };
+    return cast_where_spheres_meet(tri.interior_point() - pose_a.position, shape.bounding_radius() + tri.bounding_radius(),
+                                   pose_a, translation, cast);
+}
+
+}  // namespace detail
+
+/// How far a convex shape moves against what it collides with during the coming step (world
+/// frame, metres), for dropping speculative contacts it cannot reach: a manifold whose every
+/// point is farther than `near` is kept only if the shape, swept along `move`, meets the other
+/// shape (docs/collision.md, "Speculative contacts out of reach"). Inactive (keep everything)
+/// while `move` is zero.
+template <class T>
+struct SpeculativeSweep {
+    Vec3<T> move{};
+    T near{};
+    bool active() const { return move != Vec3<T>::zero(); }
+};
+
 /// The manifolds of a convex shape (placed by pose_convex) against mesh m (placed by pose_mesh),
 /// appended to `out` in world coordinates, normals from the mesh to the convex: points within
 /// `margin` metres, least-depth expansion above `exact_depth_above` (as generate_contacts).
 template <class T>
 void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Shape<T>& convex, const Transform<T>& pose_convex,
-                  T margin, T exact_depth_above, std::vector<MeshContact<T>>& out) {
+                  T margin, T exact_depth_above, std::vector<MeshContact<T>>& out, const SpeculativeSweep<T>& sweep = {}) {
     const Transform<T> pose = inverse(pose_mesh) * pose_convex;  // the convex in the mesh's frame
+    const Vec3<T> sweep_move = pose_mesh.inverse_apply_direction(sweep.move);
+    const detail::ShapeRef<T> swept_shape(convex);
+    // A triangle farther than sweep.near that the convex, swept along its move, never meets (see
+    // SpeculativeSweep) gives no manifold.
+    const auto out_of_reach = [&](const MeshTriangle<T>& t, const ContactManifold<T>& c) {
+        if (!sweep.active()) return false;
+        for (int i = 0; i < c.count; ++i)
+            if (!(c.points[static_cast<std::size_t>(i)].depth < -sweep.near)) return false;
+        return !detail::cast_triangle(swept_shape, pose, sweep_move, t);
+    };
     const Aabb<T> box = world_bounds(convex, pose).expanded(margin);
     const Vec3<T> centre = pose.apply(interior_point(convex));
     constexpr T same_normal = T(0.999);  // cos 2.6°
@@ -235,7 +286,7 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
             m, box,
             [&](std::uint32_t k, const MeshTriangle<T>& t) {
                 const ContactManifold<T> c = detail::triangle_manifold(t, shape, pose, centre, margin, exact_depth_above);
-                if (c.count == 0) return;
+                if (c.count == 0 || out_of_reach(t, c)) return;
                 detail::NormalGroup<T>* group = nullptr;
                 for (detail::NormalGroup<T>& g : groups)
                     if (dot(g.normal, c.normal) >= same_normal) {
@@ -298,30 +349,13 @@ std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>&
     const Vec3<T> step = pose_mesh.inverse_apply_direction(translation);
     Aabb<T> swept = world_bounds(a, local);
     swept.merge(world_bounds(a, Transform<T>{local.position + step, local.orientation}));
-    const Vec3<T> centre_a = pose_a.apply(interior_point(a));
     std::optional<ShapeCastHit<T>> best;
     const detail::ShapeRef<T> shape(a);  // every kind through one compiled copy (shape_ref.hpp)
     for_each_triangle(m, swept, [&](std::uint32_t, const MeshTriangle<T>& t) {
         MeshTriangle<T> placed = t;  // in the world, so the cast's frame is the convex pair's
         for (Vec3<T>& v : placed.v) v = pose_mesh.apply(v);
         placed.normal = pose_mesh.apply_direction(t.normal);
-        const Triangle<T> tri(placed, detail::closest_point_on_triangle(centre_a, placed.v[0], placed.v[1], placed.v[2]));
-        const auto cast = [&](const Transform<T>& from, const Vec3<T>& move) {
-            const Vec3<T> origin = from.position;
-            const auto support_c = [&](const Vec3<T>& v) {
-                detail::CastVertex<T> p;
-                p.a = rotate(from.orientation, shape.support(inverse_rotate(from.orientation, -v)));
-                p.b = tri.support(v) - origin;
-                p.c = p.b - p.a;
-                return p;
-            };
-            const T size = shape.bounding_radius() + tri.bounding_radius() + length(move) + length(tri.interior_point() - origin);
-            const Vec3<T> inside_a = from.apply(interior_point(a));
-            return detail::gjk_cast(support_c, tri.interior_point() - inside_a, size, from, move,
-                                    [&](const Transform<T>& at) { return detail::collide_pair(shape, at, tri, Transform<T>{}); });
-        };
-        const std::optional<ShapeCastHit<T>> hit = detail::cast_where_spheres_meet(
-            tri.interior_point() - pose_a.position, shape.bounding_radius() + tri.bounding_radius(), pose_a, translation, cast);
+        const std::optional<ShapeCastHit<T>> hit = detail::cast_triangle(shape, pose_a, translation, placed);
         if (!hit || dot(hit->normal, placed.normal) > T(0)) return;  // missed, or met from behind
         if (!best || hit->fraction < best->fraction) best = hit;
     });

@@ -476,12 +476,15 @@ private:
     PartsContact collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, T dt, const Contact<T>* had,
                                Contact<T>& out) const;
     bool reuse_contact(const ProxyPair& pair, T margin, T dt, const Contact<T>& had, Contact<T>& out) const;
+    bool out_of_reach(const Body<T>& a, std::uint32_t ca, const Transform<T>& pose_a, const Body<T>& b, std::uint32_t cb,
+                      const Transform<T>& pose_b, const ContactManifold<T>& now, T dt) const;
     /// A mesh pair's manifolds (mesh_collide.hpp), each with the convex side's part.
     struct MeshManifolds {
         std::vector<MeshContact<T>> contacts;
         std::vector<std::uint32_t> parts;
     };
-    void mesh_manifolds(const ProxyPair& pair, T margin, MeshManifolds& out) const;
+    void mesh_manifolds(const ProxyPair& pair, T margin, T dt, MeshManifolds& out) const;
+    SpeculativeSweep<T> speculative_sweep(const Body<T>& a, std::uint32_t ca, const Body<T>& b, T dt) const;
     /// The contacts of a pair with a mesh side from its manifolds, matched to last step's by the
     /// convex part and the normal.
     void merge_mesh_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, const MeshManifolds& fresh,
@@ -526,7 +529,7 @@ private:
     /// The mesh narrow phase's three parts, bound by the first mesh body (see joint_stage_).
     struct MeshStage {
         bool (World::*remeasure)(const ProxyPair&, T, T, std::size_t, std::size_t) = nullptr;
-        void (World::*manifolds)(const ProxyPair&, T, MeshManifolds&) const = nullptr;
+        void (World::*manifolds)(const ProxyPair&, T, T, MeshManifolds&) const = nullptr;
         void (World::*merge)(const ProxyPair&, T, std::size_t, std::size_t, const MeshManifolds&,
                              std::vector<Contact<T>>&) = nullptr;
     };
@@ -1392,7 +1395,7 @@ void World<T>::collide_on_workers(T dt) {
     parallel_for(tasks_.get(), static_cast<std::uint32_t>(mesh_jobs_.size()), 1u, [&](std::uint32_t begin, std::uint32_t end) {
         for (std::uint32_t j = begin; j < end; ++j) {
             const ProxyPair& pair = pairs_[mesh_jobs_[j]];
-            (this->*mesh_stage_.manifolds)(pair, pair_margin(bodies_[pair.a], bodies_[pair.b], dt), mesh_job_manifolds_[j]);
+            (this->*mesh_stage_.manifolds)(pair, pair_margin(bodies_[pair.a], bodies_[pair.b], dt), dt, mesh_job_manifolds_[j]);
         }
     });
 }
@@ -1439,7 +1442,7 @@ void World<T>::merge_contacts(T dt) {
             old = work.old_end;
         } else if (work.kind == PairKind::mesh) {
             const T margin = pair_margin(bodies_[pairs_[k].a], bodies_[pairs_[k].b], dt);
-            if (!parallel) (this->*mesh_stage_.manifolds)(pairs_[k], margin, mesh_manifolds_);
+            if (!parallel) (this->*mesh_stage_.manifolds)(pairs_[k], margin, dt, mesh_manifolds_);
             const std::size_t before = made.size();
             (this->*mesh_stage_.merge)(pairs_[k], margin, old, work.old_end,
                                        parallel ? mesh_job_manifolds_[mesh_job++] : mesh_manifolds_, made);
@@ -1589,9 +1592,47 @@ typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, s
     if (had && reuse_contact(pair, margin, dt, *had, out)) return PartsContact::reused;
     const ContactManifold<T> now =
         generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin, settings_.linear_slop);
-    if (now.count == 0) return PartsContact::apart;
+    if (now.count == 0 || out_of_reach(a, ca, pose_a, b, cb, pose_b, now, dt)) return PartsContact::apart;
     make_contact(pair, ca, cb, margin, had, at_first_touch(a, ca, pose_a, b, cb, pose_b, now, margin, dt), out);
     return PartsContact::made;
+}
+
+// Speculative contacts out of reach (docs/collision.md). A pair's margin grows with both bodies'
+// travel, so a fast body has speculative manifolds with everything within its travel: the tiles
+// beside the one it lands on, the border of a mesh platform, each along the normal of the
+// closest features now, tilted towards the body. Solved with the face it lands on, they pushed
+// it sideways, and their friction spun it: a box dropped at 60 m/s across the seam of four 1 m
+// static tiles went through them, a ball at 1,000 m/s near the border of a 4 m mesh platform was
+// thrown 24 m up. When a part moves more than half its bounding radius in the step and turns
+// its surface by no more than speculative_distance, a manifold whose every point is farther
+// than speculative_distance is kept only if the part, swept along the pair's relative
+// translation (plus speculative_distance), meets the other part or triangle. Slower pairs are
+// collided as before.
+template <class T>
+SpeculativeSweep<T> World<T>::speculative_sweep(const Body<T>& a, std::uint32_t ca, const Body<T>& b, T dt) const {
+    // Each velocity held to its body's cap, as pair_margin holds it (a kinematic body may be set
+    // to any finite speed; the solver caps it).
+    const auto capped = [&](const Body<T>& body) {
+        const T speed = length(body.linear_velocity_);
+        return speed > speed_limit(body) ? body.linear_velocity_ * (speed_limit(body) / speed) : body.linear_velocity_;
+    };
+    const Vec3<T> move = (capped(a) - capped(b)) * dt;
+    const T radius = xeno::bounding_radius(a.child_shape(ca)), distance = length(move);
+    if (!is_finite(move)) return {};
+    const T turn = (length(a.angular_velocity_) * a.bounding_radius() + length(b.angular_velocity_) * b.bounding_radius()) * dt;
+    const T near = settings_.speculative_distance;
+    if (!(distance > T(0.5) * radius) || !(turn <= near)) return {};
+    return {move * ((distance + near) / distance), near};
+}
+
+template <class T>
+bool World<T>::out_of_reach(const Body<T>& a, std::uint32_t ca, const Transform<T>& pose_a, const Body<T>& b, std::uint32_t cb,
+                            const Transform<T>& pose_b, const ContactManifold<T>& now, T dt) const {
+    const SpeculativeSweep<T> sweep = speculative_sweep(a, ca, b, dt);
+    if (!sweep.active()) return false;
+    for (int i = 0; i < now.count; ++i)
+        if (!(now.points[static_cast<std::size_t>(i)].depth < -sweep.near)) return false;
+    return !xeno::shape_cast(a.child_shape(ca), pose_a, sweep.move, b.child_shape(cb), pose_b);
 }
 
 /// Speculative contacts of a ball meet where the parts will touch, not where they are closest
@@ -1774,7 +1815,7 @@ bool World<T>::remeasure_mesh_pair(const ProxyPair& pair, T margin, T dt, std::s
 
 // Read-only, so pass 2 of the narrow phase runs it for several mesh pairs at once.
 template <class T>
-void World<T>::mesh_manifolds(const ProxyPair& pair, T margin, MeshManifolds& out) const {
+void World<T>::mesh_manifolds(const ProxyPair& pair, T margin, T dt, MeshManifolds& out) const {
     const Body<T>& a = bodies_[pair.a];
     const Body<T>& b = bodies_[pair.b];
     const Body<T>& mesh = a.mesh() ? a : b;
@@ -1783,7 +1824,7 @@ void World<T>::mesh_manifolds(const ProxyPair& pair, T margin, MeshManifolds& ou
     out.parts.clear();
     for (std::uint32_t part = 0; part < other.child_count(); ++part) {
         collide_mesh(*mesh.mesh(), mesh.transform(), other.child_shape(part), other.child_transform(part), margin,
-                     settings_.linear_slop, out.contacts);
+                     settings_.linear_slop, out.contacts, speculative_sweep(other, part, mesh, dt));
         out.parts.resize(out.contacts.size(), part);
     }
 }
