@@ -7,6 +7,13 @@
 #include "support/approx.hpp"
 #include "support/sim.hpp"
 
+#include <xeno/shape/convex_hull.hpp>
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
 using namespace xeno;
 
 namespace {
@@ -219,7 +226,8 @@ TEST_CASE_TEMPLATE("regression: a box sliding across the seams of static tiles s
         const BodyId id = w.create_body(Box<T>(half.x, half.y, half.z), def);
         T fastest_up = T(0);
         test::simulate(w, T(3), [&](int) { fastest_up = std::max(fastest_up, std::abs(w.body(id).linear_velocity().y)); });
-        CAPTURE(half.x);
+        const T half_length = half.x;  // a copy: CAPTURE's lambda cannot capture a structured binding (clang, C++17)
+        CAPTURE(half_length);
         CHECK(test::near(w.body(id).position().x, speed * speed / (T(2) * mu * g), T(0.01)));
         CHECK(fastest_up < T(0.01));
         CHECK(std::abs(w.body(id).position().z) < T(0.01));

@@ -2125,9 +2125,9 @@ void World<T>::prepare_contact_rows(T h) {
 
 // The seam between two separate static bodies laid edge to edge (box tiles of a floor): a body
 // sliding on one towards the seam gets a contact with the side face of the next, square to the
-// face it slides on and against its motion, whose points on the body all lie in that face's plane. That face
-// of the next body is covered by the first one; only Box2D's chain shapes or Jolt's enhanced
-// internal edge removal (off by default) know it. Such a contact gets no row while the body
+// face it slides on and against its motion, whose points on the body all lie in that face's
+// plane. That side face is covered by the first body; only Box2D's chain shapes or Jolt's
+// enhanced internal edge removal (off by default) know it. Such a contact gets no row while the body
 // touches the first body's face there (docs/meshes.md, "Separate bodies edge to edge"): a 0.5 m
 // cube at 5 m/s across 1 m tiles stopped after 0.65 m of 2.12 and hopped 11 cm; a wall or a step
 // higher than linear_slop has points above that plane and keeps its row.
@@ -2160,8 +2160,9 @@ bool World<T>::seam_ghost(const Contact<T>& c) const {
         T face_depth = -ScalarTraits<T>::infinity;
         for (int i = 0; i < face.manifold.count; ++i)
             face_depth = std::max(face_depth, face.manifold.points[static_cast<std::size_t>(i)].depth);
-        if (!(face_depth >= -slop)) continue;                                            // not resting on that face
-        const Vec3<T> on_face = on_mover(face, 0) - n1 * face.manifold.points[0].depth;  // a point of the face's plane
+        if (!(face_depth >= -slop)) continue;  // not resting on that face
+        // A point of the face's plane: a point on the mover lies `depth` below it along n1.
+        const Vec3<T> on_face = on_mover(face, 0) + n1 * face.manifold.points[0].depth;
         bool in_plane = true;
         for (int i = 0; i < c.manifold.count && in_plane; ++i) in_plane = std::abs(dot(on_mover(c, i) - on_face, n1)) <= slop;
         if (in_plane) return true;
