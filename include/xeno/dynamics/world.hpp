@@ -1605,10 +1605,11 @@ typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, s
 // closest features now, tilted towards the body. Solved with the face it lands on, they pushed
 // it sideways, and their friction spun it: a box dropped at 60 m/s across the seam of four 1 m
 // static tiles went through them, a ball at 1,000 m/s near the border of a 4 m mesh platform was
-// thrown 24 m up. When a part moves more than half its bounding radius in the step and turns
-// its surface by no more than speculative_distance, a manifold whose every point is farther
-// than speculative_distance is kept only if the part, swept along the pair's relative
-// translation (plus speculative_distance), meets the other part or triangle. Slower pairs are
+// thrown 24 m up. When a part moves more than half its bounding radius in the step (against a
+// static body: at any speed, `any_speed`) and turns its surface by no more than
+// speculative_distance, a manifold whose every point is farther than speculative_distance is
+// kept only if the part, swept along the pair's relative translation (plus
+// speculative_distance), meets the other part or triangle. Slower pairs of moving bodies are
 // collided as before.
 template <class T>
 SpeculativeSweep<T> World<T>::speculative_sweep(const Body<T>& a, std::uint32_t ca, const Body<T>& b, T dt,
@@ -1631,15 +1632,16 @@ SpeculativeSweep<T> World<T>::speculative_sweep(const Body<T>& a, std::uint32_t 
 template <class T>
 bool World<T>::out_of_reach(const Body<T>& a, std::uint32_t ca, const Transform<T>& pose_a, const Body<T>& b, std::uint32_t cb,
                             const Transform<T>& pose_b, const ContactManifold<T>& now, T dt) const {
+    // Most manifolds have a point within speculative_distance (every resting one): decided
+    // before anything about the sweep is computed.
+    for (int i = 0; i < now.count; ++i)
+        if (!(now.points[static_cast<std::size_t>(i)].depth < -settings_.speculative_distance)) return false;
     // Against a static body at any speed: separate static boxes laid side by side (a floor of
     // tiles) gave a body sliding over them manifolds with the neighbours beside its path, whose
     // separating axis pointed along the motion (docs/meshes.md, "Separate bodies edge to edge").
     const bool fixed = a.type_ == BodyType::static_body || b.type_ == BodyType::static_body;
     const SpeculativeSweep<T> sweep = speculative_sweep(a, ca, b, dt, fixed);
-    if (!sweep.active()) return false;
-    for (int i = 0; i < now.count; ++i)
-        if (!(now.points[static_cast<std::size_t>(i)].depth < -sweep.near)) return false;
-    return !xeno::shape_cast(a.child_shape(ca), pose_a, sweep.move, b.child_shape(cb), pose_b);
+    return sweep.active() && !xeno::shape_cast(a.child_shape(ca), pose_a, sweep.move, b.child_shape(cb), pose_b);
 }
 
 /// Speculative contacts of a ball meet where the parts will touch, not where they are closest
