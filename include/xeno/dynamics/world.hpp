@@ -656,6 +656,7 @@ private:
     static void require_centred(const Shape<T>& shape, const char* where);
     void index_contacts(std::size_t slots);
     bool seam_ghost(const Contact<T>& contact) const;
+    Vec3<T> highest_point(std::uint32_t slot, const Vec3<T>& d) const;
     void end_contact(const Contact<T>& c) {
         if (c.touching) events_pending_.push_back({ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0)});
     }
@@ -2131,8 +2132,10 @@ void World<T>::prepare_contact_rows(T h) {
 // plane. That side face is covered by the first body; only Box2D's chain shapes or Jolt's
 // enhanced internal edge removal (off by default) know it. Such a contact gets no row while the body
 // touches the first body's face there (docs/meshes.md, "Separate bodies edge to edge"): a 0.5 m
-// cube at 5 m/s across 1 m tiles stopped after 0.65 m of 2.12 and hopped 11 cm; a wall or a step
-// higher than linear_slop has points above that plane and keeps its row.
+// cube at 5 m/s across 1 m tiles stopped after 0.65 m of 2.12 and hopped 11 cm. The second body
+// must itself end within linear_slop of that plane: a wall or a step keeps its row even against
+// a body thinner than linear_slop (a 3 mm plate, a 4 mm ball, whose every point is near the
+// plane; without this test they went through a 2 cm static wall at 3-6 m/s).
 template <class T>
 bool World<T>::seam_ghost(const Contact<T>& c) const {
     const bool a_static = bodies_[c.a.index].type_ == BodyType::static_body;
@@ -2151,6 +2154,7 @@ bool World<T>::seam_ghost(const Contact<T>& c) const {
     for (int i = 0; i < c.manifold.count; ++i) deepest = std::max(deepest, c.manifold.points[static_cast<std::size_t>(i)].depth);
     if (!(deepest <= slop)) return false;  // a real overlap
     const Vec3<T> n = from_static(c);
+    const std::uint32_t obstacle = a_static ? c.a.index : c.b.index;
     const std::uint32_t end = contact_start_[mover], begin = mover == 0 ? 0 : contact_start_[mover - 1];
     for (std::uint32_t k = begin; k < end; ++k) {
         const Contact<T>& face = contacts_[contact_list_[k]];
@@ -2167,9 +2171,20 @@ bool World<T>::seam_ghost(const Contact<T>& c) const {
         const Vec3<T> on_face = on_mover(face, 0) + n1 * face.manifold.points[0].depth;
         bool in_plane = true;
         for (int i = 0; i < c.manifold.count && in_plane; ++i) in_plane = std::abs(dot(on_mover(c, i) - on_face, n1)) <= slop;
-        if (in_plane) return true;
+        if (in_plane && dot(highest_point(obstacle, n1) - on_face, n1) <= slop) return true;
     }
     return false;
+}
+
+/// The point of a body's geometry farthest along the world direction d: its shape's support
+/// point, or for a compound or mesh the corner of its bounding box (higher than the geometry, so
+/// a test "no higher than" stays true only when the geometry is).
+template <class T>
+Vec3<T> World<T>::highest_point(std::uint32_t slot, const Vec3<T>& d) const {
+    const Body<T>& b = bodies_[slot];
+    if (const Shape<T>* shape = b.convex_shape()) return b.world_point(support(*shape, b.local_vector(d)));
+    const Aabb<T>& box = bounds_[slot];
+    return {d.x >= T(0) ? box.max.x : box.min.x, d.y >= T(0) ? box.max.y : box.min.y, d.z >= T(0) ? box.max.z : box.min.z};
 }
 
 /// Every contact point is a spring of stiffness m_eff·ω² (m_eff its normal_mass), so a body on
