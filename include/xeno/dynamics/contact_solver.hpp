@@ -66,12 +66,15 @@ struct ContactConstraint {
     /// levers"): a flat or pointed side whose fixed levers would be off by more than
     /// levers_turn_far allows. Beside `count`, which the packing reads in the same cache line.
     bool turns_a = false, turns_b = false;
+    /// slip_1, slip_2 are not zero (kinematic_chord_slip): the row needs its group's WideTurn.
+    bool slips = false;
     std::array<ContactConstraintPoint<T>, 4> points{};
     // Central friction and twist.
     Vec3<T> rc_a{}, rc_b{};                          ///< m, centres of mass to the patch centre
     T k11{}, k12{}, k22{};                           ///< inverse of the 2×2 tangent effective-mass matrix
     T friction_1{}, friction_2{};                    ///< N·s per substep along t1, t2
     T twist_mass{}, twist_impulse{}, twist_lever{};  ///< kg·m², N·m·s, m (the patch's mean radius, World::twist_lever)
+    T slip_1{}, slip_2{};                            ///< m/s along t1, t2: kinematic_chord_slip of B less A's
     /// m: the radius of each side's rounded surface at the contact (a sphere, a capsule, a
     /// cylinder's side; 0 for flat faces and edges). Such a surface rolls: its contact point stays
     /// at the bottom instead of turning with the body (rolling_rise in wide_contact_solver.hpp).
@@ -101,6 +104,26 @@ bool levers_turn_far(const ContactConstraint<T>& c, const Vec3<T>& w, T step, bo
         reach = std::max(reach, length_squared(cross(w, side_b ? p.r_b : p.r_a)));
     }
     return step * length(w) * std::sqrt(reach) > kTurnSpeed;
+}
+
+/// A kinematic body turning at w carries a point at lever r along the chord of its turn, at
+/// (R(w h) − 1) r / h on average over a substep h, not at w × r, the tangent at the substep's
+/// start that the friction row's lever gives. The difference, about h |w|² r / 2 towards the
+/// axis, is what the friction row adds to its relative velocity, and such a side's levers turn
+/// with it through the substeps: a body held by friction then follows the turn and stays on its
+/// circle. With fixed levers it moved along the tangent each step, an explicit Euler step of the
+/// circle: a box on a turntable at 1 rad/s spiralled out by step² ω² r / 2 a step, 8 mm/s at
+/// 1 m, and at 2 rad/s slid off in 4 s (docs/solver.md, "Riding a turning body").
+/// Turning levers alone left an eighth of that (substep² instead of step²), and every step
+/// asked the first substep's friction for the whole turn of the step's velocity. The chord
+/// slip of R(w h) r is that of r turned by R(w h), as both turn about w; the row keeps the one of
+/// the step's start, off by the angle of one step.
+template <class T>
+Vec3<T> kinematic_chord_slip(const Vec3<T>& w, const Vec3<T>& r, T h) {
+    const T speed = length(w);
+    if (!(speed > T(0))) return {};
+    const Vec3<T> chord = (rotate(Quat<T>::from_axis_angle(w / speed, speed * h), r) - r) / h;
+    return chord - cross(w, r);
 }
 
 /// What one solver pass needs to know.

@@ -61,7 +61,8 @@ struct WideContact {
     int min_count;             ///< points of the emptiest lane that holds a manifold
     bool rolls;                ///< some lane has a rounded side (round_a or round_b > 0)
     bool bounces;              ///< some lane has a restitution (its points' approach speeds are kept)
-    bool turns;                ///< some lane has a side whose levers turn (its WideTurn)
+    bool turns;                ///< some lane has a side whose levers turn or that slips (its WideTurn)
+    bool slips;                ///< some lane has a kinematic_chord_slip (in its WideTurn)
     V count;                   ///< points per lane
     WideVec3<V> normal, t1, t2;
     V inv_mass_a, inv_mass_b, friction;
@@ -81,6 +82,7 @@ template <class V>
 struct WideTurn {
     V turn_a, turn_b;        ///< 1 where the lane's side turns its levers, else 0
     WideVec3<V> rc_a, rc_b;  ///< m, the levers to the patch centres at the start of the step
+    V slip_1, slip_2;        ///< m/s, ContactConstraint::slip_1, slip_2
 };
 
 /// Turning levers. A row's levers are fixed in world space for the step, while its bodies turn
@@ -379,8 +381,11 @@ XENO_WIDE_INLINE void solve_group(WideContact<T, W>& c, const WideTurn<Wide<T, W
     if constexpr (Turning) m = friction_moments(c, *t, A, B);
     const WideVec3<V>&a1 = pick<Turning>(m.a1, c.a1), &a2 = pick<Turning>(m.a2, c.a2);
     const WideVec3<V>&b1 = pick<Turning>(m.b1, c.b1), &b2 = pick<Turning>(m.b2, c.b2);
-    const V v1 = dot(dv, c.t1) + dot(B.w, b1) - dot(A.w, a1);
-    const V v2 = dot(dv, c.t2) + dot(B.w, b2) - dot(A.w, a2);
+    V v1 = dot(dv, c.t1) + dot(B.w, b1) - dot(A.w, a1);
+    V v2 = dot(dv, c.t2) + dot(B.w, b2) - dot(A.w, a2);
+    if constexpr (Turning) {
+        if (c.slips) v1 = v1 + t->slip_1, v2 = v2 + t->slip_2;
+    }
     V f1 = c.friction_1 - (c.k11 * v1 + c.k12 * v2);
     V f2 = c.friction_2 - (c.k12 * v1 + c.k22 * v2);
     const V bound = c.friction * total;
@@ -473,6 +478,7 @@ void pack_lane(WideContact<T, W>& c, int l, std::uint32_t row, const ContactCons
     c.round_a.set(l, k.round_a), c.round_b.set(l, k.round_b);
     c.rolls = c.rolls || k.round_a > T(0) || k.round_b > T(0);
     c.bounces = c.bounces || k.restitution > T(0);
+    c.slips = c.slips || k.slips;
 }
 
 /// Fills lane `l` of the WideTurn of a group that turns levers.
@@ -481,6 +487,7 @@ void pack_turn(WideTurn<V>& t, int l, const ContactConstraint<T>& k) {
     t.turn_a.set(l, k.turns_a ? T(1) : T(0)), t.turn_b.set(l, k.turns_b ? T(1) : T(0));
     t.rc_a.x.set(l, k.rc_a.x), t.rc_a.y.set(l, k.rc_a.y), t.rc_a.z.set(l, k.rc_a.z);
     t.rc_b.x.set(l, k.rc_b.x), t.rc_b.y.set(l, k.rc_b.y), t.rc_b.z.set(l, k.rc_b.z);
+    t.slip_1.set(l, k.slip_1), t.slip_2.set(l, k.slip_2);
 }
 
 /// Copies lane `l`'s impulses back into its scalar row (for restitution, events and the next
@@ -548,7 +555,7 @@ public:
         single_turns_.clear();
         for (const std::uint32_t row : colouring_.overflow) {
             overflow_.push_back(empty<width>());
-            overflow_.back().turns = rows[row].turns_a || rows[row].turns_b;
+            overflow_.back().turns = rows[row].turns_a || rows[row].turns_b || rows[row].slips;
             pack_lane(overflow_.back(), 0, row, rows[row], masses);
             if (turning) pack_turn(single_turns_.emplace_back(), 0, rows[row]);
         }
@@ -630,7 +637,7 @@ private:
             const ContactConstraint<T>& row = rows[colouring_.order[i]];
             fewest = std::min(fewest, row.count);
             most = std::max(most, row.count);
-            turns = turns || row.turns_a || row.turns_b;
+            turns = turns || row.turns_a || row.turns_b || row.slips;
         }
         if (end - begin < static_cast<std::uint32_t>(width)) {
             c = empty<width>();
@@ -640,6 +647,7 @@ private:
             c.min_count = 4;
             c.rolls = false;
             c.bounces = false;
+            c.slips = false;
         }
         c.turns = turns;
     }

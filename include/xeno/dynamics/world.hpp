@@ -2106,7 +2106,7 @@ void World<T>::prepare_contact_rows(T h) {
             for (std::uint32_t r = begin; r < end; ++r) {
                 const detail::ContactConstraint<T>& c = constraints_[r];
                 contact_row(row_contacts_[r], soft, soft_static, step, constraints_[r]);
-                turns = turns || c.turns_a || c.turns_b;
+                turns = turns || c.turns_a || c.turns_b || c.slips;
                 for (int i = 0; i < c.count; ++i)
                     fast = fast || c.points[static_cast<std::size_t>(i)].relative_velocity < -T(detail::impact_sweep_speed);
             }
@@ -2323,8 +2323,19 @@ void World<T>::contact_row(std::uint32_t m, const detail::Softness<T>& soft, con
     const detail::Roundness<T> round_b = detail::roundness(b, contact.child_b, c.normal);
     c.round_a = round_a.rolling;
     c.round_b = round_b.rolling;
-    c.turns_a = sa.spins_far && c.round_a == T(0) && detail::levers_turn_far(c, va.w, step, false);
-    c.turns_b = sb.spins_far && c.round_b == T(0) && detail::levers_turn_far(c, vb.w, step, true);
+    // A turning kinematic side's flat surface carries its contact round with it (a round one
+    // turns under a contact that stays put): its levers turn, and the row takes its chord slip.
+    const bool carries_a = sa.inv_mass == T(0) && c.round_a == T(0) && length_squared(va.w) > T(0);
+    const bool carries_b = sb.inv_mass == T(0) && c.round_b == T(0) && length_squared(vb.w) > T(0);
+    c.turns_a = carries_a || (sa.spins_far && c.round_a == T(0) && detail::levers_turn_far(c, va.w, step, false));
+    c.turns_b = carries_b || (sb.spins_far && c.round_b == T(0) && detail::levers_turn_far(c, vb.w, step, true));
+    const T h = step / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+    Vec3<T> slip{};
+    if (carries_b) slip += detail::kinematic_chord_slip(vb.w, c.rc_b, h);
+    if (carries_a) slip -= detail::kinematic_chord_slip(va.w, c.rc_a, h);
+    c.slip_1 = dot(slip, c.t1);
+    c.slip_2 = dot(slip, c.t2);
+    c.slips = c.slip_1 != T(0) || c.slip_2 != T(0);
     c.twist_lever = twist_lever(contact, round_a.face, round_b.face);
     c.friction_1 = c.friction_2 = c.twist_impulse = T(0);
     if (settings_.warm_starting) {
