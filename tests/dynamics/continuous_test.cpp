@@ -10,6 +10,7 @@
 #include <xeno/shape/convex_hull.hpp>
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -267,4 +268,39 @@ TEST_CASE_TEMPLATE("regression: bodies thinner than linear_slop sliding on a sta
         CHECK(farthest + body.half_width <= wall_face + T(0.01));
         CHECK(w.body(id).position().y > T(0));
     }
+}
+
+TEST_CASE_TEMPLATE("regression: a wedge sliding into a static wall inside a static trigger stops at the wall", C,
+                   XENO_TEST_CONFIGS) {
+    // World::seam_ghost took the trigger's contact (normal down, out of its bottom face) for a
+    // face the wedge rested on, below which the wall did not rise: the wall's contact, whose points
+    // lie on the floor at the wedge's leading edge, got no row and the wedge's edge went into the
+    // wall. Sensors hold nothing up.
+    using T = typename C::T;
+    std::vector<Vec3<T>> corners;
+    for (const T z : {T(-0.2), T(0.2)})
+        corners.insert(corners.end(), {{T(-0.2), T(0), z}, {T(0.2), T(0), z}, {T(-0.2), T(0.3), z}});
+    const ConvexHull<T> wedge = make_convex_hull(corners);
+    const Shape<T> shape = wedge.polyhedron;
+    const T bottom = support(shape, Vec3<T>{T(0), T(-1), T(0)}).y;
+    World<T> w(C::settings());
+    BodyDef<T> fixed;
+    fixed.type = BodyType::static_body;
+    fixed.position = {T(0), T(-0.5), T(0)};
+    w.create_body(Box<T>(T(10), T(0.5), T(10)), fixed);
+    fixed.position = {T(1.01), T(0.5), T(0)};  // face at x = 1
+    w.create_body(Box<T>(T(0.01), T(0.5), T(2)), fixed);
+    fixed.sensor = true;
+    fixed.position = {T(0.5), T(1), T(0)};  // a trigger standing on the floor around the wall
+    w.create_body(Box<T>(T(1.5), T(1), T(1.5)), fixed);
+    BodyDef<T> def;
+    def.position = {T(0), -bottom, T(0)};
+    def.linear_velocity = {T(8), T(0), T(0)};
+    const BodyId id = w.create_body(shape, def);
+    T farthest = -std::numeric_limits<T>::infinity();  // the wedge's point farthest along x
+    test::simulate(w, T(2), [&](int) {
+        const Body<T>& b = w.body(id);
+        farthest = std::max(farthest, b.world_point(support(shape, b.local_vector(Vec3<T>{T(1), T(0), T(0)}))).x);
+    });
+    CHECK(farthest <= T(1.005));
 }

@@ -2158,7 +2158,7 @@ bool World<T>::seam_ghost(const Contact<T>& c) const {
     const std::uint32_t end = contact_start_[mover], begin = mover == 0 ? 0 : contact_start_[mover - 1];
     for (std::uint32_t k = begin; k < end; ++k) {
         const Contact<T>& face = contacts_[contact_list_[k]];
-        if (&face == &c || face.manifold.count == 0) continue;
+        if (&face == &c || face.sensor || face.manifold.count == 0) continue;  // a trigger holds nothing up
         const std::uint32_t other = face.a.index == mover ? face.b.index : face.a.index;
         if (bodies_[other].type_ != BodyType::static_body) continue;
         const Vec3<T> n1 = from_static(face);
