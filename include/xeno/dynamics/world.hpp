@@ -476,8 +476,17 @@ private:
     PartsContact collide_parts(const ProxyPair& pair, std::uint32_t ca, std::uint32_t cb, T margin, T dt, const Contact<T>* had,
                                Contact<T>& out) const;
     bool reuse_contact(const ProxyPair& pair, T margin, T dt, const Contact<T>& had, Contact<T>& out) const;
-    bool out_of_reach(const Body<T>& a, std::uint32_t ca, const Transform<T>& pose_a, const Body<T>& b, std::uint32_t cb,
-                      const Transform<T>& pose_b, const ContactManifold<T>& now, T dt) const;
+    /// How a contact stands to its moving body's path this step (World::path_of).
+    struct PathContact {
+        enum Kind : std::uint8_t { none, turns, beside } kind = none;  ///< none: no row, or not a static pair
+        T distance{};       ///< m: how far the body moves before the contact turns it (0: now)
+        Vec3<T> normal{};   ///< unit, world: the static surface's normal there, towards the body
+        Vec3<T> surface{};  ///< m, world: a point of that surface
+    };
+    PathContact path_of(std::uint32_t m, T dt) const;
+    bool drop_out_of_reach(T dt);
+    bool out_of_reach(std::uint32_t m) const;
+    bool jointed(std::uint32_t slot) const;
     /// A mesh pair's manifolds (mesh_collide.hpp), each with the convex side's part.
     struct MeshManifolds {
         std::vector<MeshContact<T>> contacts;
@@ -714,6 +723,8 @@ private:
     std::vector<std::uint32_t> mesh_jobs_;   ///< several workers: the pairs of kind mesh, in pair order
     std::vector<MeshManifolds> mesh_job_manifolds_;  ///< several workers: the manifolds of each of mesh_jobs_
     std::vector<std::uint8_t> old_taken_;            ///< last step's contacts of a mesh pair already matched (pass 3)
+    std::vector<PathContact> path_;                  ///< per contact: path_of (drop_out_of_reach)
+    std::vector<std::uint8_t> dropped_;              ///< per contact: 1 = out of reach (drop_out_of_reach)
     std::vector<std::uint32_t> row_contacts_;        ///< per contact row: its contact (prepare)
     std::vector<std::uint32_t> bouncing_rows_;       ///< the rows with a restitution, in row order (prepare)
     detail::ReboundEnergyCap<T> rebound_cap_;        ///< solve: a bounce gives back no more than it took
@@ -1324,7 +1335,46 @@ void World<T>::narrow_phase(T dt) {
     merge_contacts(dt);
     contacts_.swap(next_contacts_);
     index_contacts(bodies_.size());
+    if (drop_out_of_reach(dt)) index_contacts(bodies_.size());
     stats_.contacts = contacts_.size();
+}
+
+/// Removes the contacts out of reach (World::out_of_reach) from contacts_, as if the narrow
+/// phase had found none: a contact kept without a row merged its stale points into the next
+/// step's manifold (a box sliding at 10 m/s across tiles stopped dead at a seam). Reports an
+/// `ended` event for one that touched at the end of the last step. True if it removed any.
+template <class T>
+bool World<T>::drop_out_of_reach(T dt) {
+    path_.resize(contacts_.size());
+    std::atomic<bool> beside{false};
+    parallel_for(tasks_.get(), static_cast<std::uint32_t>(contacts_.size()), row_range,
+                 [&](std::uint32_t begin, std::uint32_t end) {
+                     bool any = false;
+                     for (std::uint32_t m = begin; m < end; ++m) {
+                         path_[m] = path_of(m, dt);
+                         any = any || path_[m].kind == PathContact::beside;
+                     }
+                     if (any) beside.store(true, std::memory_order_relaxed);
+                 });
+    if (!beside.load()) return false;
+    // Decided for every contact before any is removed: each decision reads the body's others.
+    dropped_.assign(contacts_.size(), 0);
+    bool any = false;
+    for (std::uint32_t m = 0; m < contacts_.size(); ++m)
+        if (out_of_reach(m)) dropped_[m] = 1, any = true;
+    if (!any) return false;
+    std::size_t kept = 0;
+    for (std::size_t m = 0; m < contacts_.size(); ++m) {
+        const Contact<T>& c = contacts_[m];
+        if (!dropped_[m]) {
+            if (kept != m) contacts_[kept] = c;
+            ++kept;
+        } else if (c.was_touching) {
+            events_pending_.push_back({ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0)});
+        }
+    }
+    contacts_.resize(kept);
+    return true;
 }
 
 /// Pass 1 of narrow_phase, in pair order: each pair's kind (PairWork) and its contacts of last
@@ -1595,7 +1645,7 @@ typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, s
     if (had && reuse_contact(pair, margin, dt, *had, out)) return PartsContact::reused;
     const ContactManifold<T> now =
         generate_contacts(a.child_shape(ca), pose_a, b.child_shape(cb), pose_b, margin, settings_.linear_slop);
-    if (now.count == 0 || out_of_reach(a, ca, pose_a, b, cb, pose_b, now, dt)) return PartsContact::apart;
+    if (now.count == 0) return PartsContact::apart;
     make_contact(pair, ca, cb, margin, had, at_first_touch(a, ca, pose_a, b, cb, pose_b, now, margin, dt), out);
     return PartsContact::made;
 }
@@ -1609,9 +1659,10 @@ typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, s
 // thrown 24 m up. When a part moves more than half its bounding radius in the step (against a
 // static body: at any speed, `any_speed`) and turns its surface by no more than
 // speculative_distance, a manifold whose every point is farther than speculative_distance is
-// kept only if the part, swept along the pair's relative translation (plus
-// speculative_distance), meets the other part or triangle. Slower pairs of moving bodies are
-// collided as before.
+// beside the path unless the part, swept along the pair's relative translation (plus
+// speculative_distance), meets the other part or triangle: a mesh drops such triangles
+// (collide_mesh), a convex pair with a static body is removed after the narrow phase when
+// nothing can turn the body towards it (drop_out_of_reach). Pairs of moving bodies keep theirs.
 template <class T>
 SpeculativeSweep<T> World<T>::speculative_sweep(const Body<T>& a, std::uint32_t ca, const Body<T>& b, T dt,
                                                 bool any_speed) const {
@@ -1630,19 +1681,85 @@ SpeculativeSweep<T> World<T>::speculative_sweep(const Body<T>& a, std::uint32_t 
     return {move * ((distance + near) / distance), near};
 }
 
+/// How contact m, between a static body and a moving one, stands to the moving body's path in
+/// the step: it may turn the body (a point within speculative_distance, a solver row now; or
+/// the part, swept along its translation in the step plus speculative_distance, meets the static
+/// part: at that distance, with the surface it meets there), or it is beside the path (every
+/// point farther than speculative_distance and the sweep misses: speculative_sweep). Against a
+/// static body at any speed: separate static boxes laid side by side (a floor of tiles) gave a
+/// body sliding over them manifolds with the neighbours beside its path, whose separating axis
+/// pointed along the motion (docs/meshes.md, "Separate bodies edge to edge"). Mesh pairs cull
+/// their triangles in collide_mesh; sensors and pairs of moving bodies are `none`.
 template <class T>
-bool World<T>::out_of_reach(const Body<T>& a, std::uint32_t ca, const Transform<T>& pose_a, const Body<T>& b, std::uint32_t cb,
-                            const Transform<T>& pose_b, const ContactManifold<T>& now, T dt) const {
-    // Most manifolds have a point within speculative_distance (every resting one): decided
-    // before anything about the sweep is computed.
-    for (int i = 0; i < now.count; ++i)
-        if (!(now.points[static_cast<std::size_t>(i)].depth < -settings_.speculative_distance)) return false;
-    // Against a static body at any speed: separate static boxes laid side by side (a floor of
-    // tiles) gave a body sliding over them manifolds with the neighbours beside its path, whose
-    // separating axis pointed along the motion (docs/meshes.md, "Separate bodies edge to edge").
-    const bool fixed = a.type_ == BodyType::static_body || b.type_ == BodyType::static_body;
-    const SpeculativeSweep<T> sweep = speculative_sweep(a, ca, b, dt, fixed);
-    return sweep.active() && !xeno::shape_cast(a.child_shape(ca), pose_a, sweep.move, b.child_shape(cb), pose_b);
+typename World<T>::PathContact World<T>::path_of(std::uint32_t m, T dt) const {
+    const Contact<T>& c = contacts_[m];
+    const Body<T>& a = bodies_[c.a.index];
+    const Body<T>& b = bodies_[c.b.index];
+    PathContact out;
+    const bool a_static = a.type_ == BodyType::static_body;
+    if (c.sensor || c.manifold.count == 0 || a_static == (b.type_ == BodyType::static_body) || a.mesh() || b.mesh() ||
+        seam_ghost(c))
+        return out;
+    const Vec3<T> towards_mover = a_static ? c.manifold.normal : -c.manifold.normal;
+    out.kind = PathContact::turns;
+    out.normal = towards_mover;
+    const ContactPoint<T>& first = c.manifold.points[0];
+    out.surface = (a_static ? b.world_point(first.local_b) : a.world_point(first.local_a)) + towards_mover * first.depth;
+    for (int i = 0; i < c.manifold.count; ++i)
+        if (!(c.manifold.points[static_cast<std::size_t>(i)].depth < -settings_.speculative_distance)) return out;
+    const SpeculativeSweep<T> sweep = speculative_sweep(a, c.child_a, b, dt, true);
+    if (!sweep.active()) return out;
+    const std::optional<ShapeCastHit<T>> hit =
+        xeno::shape_cast(a.child_shape(c.child_a), a.child_transform(c.child_a), sweep.move, b.child_shape(c.child_b),
+                         b.child_transform(c.child_b));
+    if (!hit) {
+        out.kind = PathContact::beside;
+        return out;
+    }
+    // The hit's normal runs from the swept part A to B, and its point is on B where the moved A
+    // touches it: moved back by A's share of the move when A is the static one.
+    out.distance = hit->fraction * length(sweep.move);
+    out.normal = a_static ? hit->normal : -hit->normal;
+    out.surface = a_static ? hit->point - sweep.move * hit->fraction : hit->point;
+    return out;
+}
+
+/// Whether contact m gets no row as out of reach (docs/collision.md, "Speculative contacts out
+/// of reach"): beside the path of its moving body (path_of), and that body cannot be turned
+/// towards it within the step. It can when a joint holds it (a flail swung into a post went
+/// through it), or when the static part rises by more than linear_slop above the surface that
+/// first turns the body this step (the nearest along its path of its contacts that may turn
+/// it): a ball falling at 70 m/s onto a 45° ramp beside a wall was turned by the ramp into the
+/// wall, whose manifold was beside its straight path, and went through it in 4 of 10 drops. The
+/// tiles beside the one a body lands on, flush with its top, stay out of reach.
+template <class T>
+bool World<T>::out_of_reach(std::uint32_t m) const {
+    if (path_[m].kind != PathContact::beside) return false;
+    const Contact<T>& c = contacts_[m];
+    const bool a_static = bodies_[c.a.index].type_ == BodyType::static_body;
+    const std::uint32_t mover = a_static ? c.b.index : c.a.index, fixed = a_static ? c.a.index : c.b.index;
+    if (jointed(mover)) return false;
+    const T slop = settings_.linear_slop;
+    const std::uint32_t end = contact_start_[mover], begin = mover == 0 ? 0 : contact_start_[mover - 1];
+    T first = ScalarTraits<T>::infinity;
+    for (std::uint32_t k = begin; k < end; ++k) {
+        const PathContact& turn = path_[contact_list_[k]];
+        if (turn.kind == PathContact::turns) first = std::min(first, turn.distance);
+    }
+    for (std::uint32_t k = begin; k < end; ++k) {
+        const PathContact& turn = path_[contact_list_[k]];
+        if (turn.kind != PathContact::turns || !(turn.distance <= first + slop)) continue;
+        if (dot(highest_point(fixed, turn.normal) - turn.surface, turn.normal) > slop) return false;
+    }
+    return true;
+}
+
+/// Whether a living joint holds the body in `slot`.
+template <class T>
+bool World<T>::jointed(std::uint32_t slot) const {
+    for (const Joint<T>& j : joints_)
+        if (j.alive && (j.a.index == slot || j.b.index == slot)) return true;
+    return false;
 }
 
 /// Speculative contacts of a ball meet where the parts will touch, not where they are closest
