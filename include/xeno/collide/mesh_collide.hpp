@@ -250,6 +250,7 @@ template <class T>
 struct SpeculativeSweep {
     Vec3<T> move{};
     T near{};
+    T rise{};  ///< m: how far a triangle beside the path may rise above the one that turns the convex
     bool active() const { return move != Vec3<T>::zero(); }
 };
 
@@ -262,19 +263,50 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
     const Transform<T> pose = inverse(pose_mesh) * pose_convex;  // the convex in the mesh's frame
     const Vec3<T> sweep_move = pose_mesh.inverse_apply_direction(sweep.move);
     const detail::ShapeRef<T> swept_shape(convex);
-    // A triangle farther than sweep.near that the convex, swept along its move, never meets (see
-    // SpeculativeSweep) gives no manifold.
-    const auto out_of_reach = [&](const MeshTriangle<T>& t, const ContactManifold<T>& c) {
-        if (!sweep.active()) return false;
-        for (int i = 0; i < c.count; ++i)
-            if (!(c.points[static_cast<std::size_t>(i)].depth < -sweep.near)) return false;
-        return !detail::cast_triangle(swept_shape, pose, sweep_move, t);
-    };
     const Aabb<T> box = world_bounds(convex, pose).expanded(margin);
     const Vec3<T> centre = pose.apply(interior_point(convex));
     constexpr T same_normal = T(0.999);  // cos 2.6°
     const T size = bounding_radius(convex);
     std::vector<detail::NormalGroup<T>> groups;
+    const auto add = [&](std::uint32_t k, const ContactManifold<T>& c) {
+        detail::NormalGroup<T>* group = nullptr;
+        for (detail::NormalGroup<T>& g : groups)
+            if (dot(g.normal, c.normal) >= same_normal) {
+                group = &g;
+                break;
+            }
+        if (!group) {
+            groups.emplace_back();
+            group = &groups.back();
+            group->normal = c.normal;
+        }
+        group->add(c, k, size);
+    };
+    // With a sweep (see SpeculativeSweep): a triangle farther than sweep.near that the convex,
+    // swept along its move, never meets is beside the path. It gives no manifold unless it rises
+    // more than sweep.rise above a triangle that first turns the convex on the way (one within
+    // sweep.near, or the nearest met along the sweep): a ramp turns a fast body into the wall
+    // beside it within the step.
+    std::vector<std::pair<T, MeshTriangle<T>>> turns;  // distance along the path, triangle
+    struct Beside {
+        MeshTriangle<T> triangle;
+        std::uint32_t index;
+        ContactManifold<T> manifold;
+    };
+    std::vector<Beside> beside;
+    const auto classify = [&](std::uint32_t k, const MeshTriangle<T>& t, const ContactManifold<T>& c) {
+        if (!sweep.active()) return add(k, c);
+        bool near = false;
+        for (int i = 0; i < c.count; ++i) near = near || !(c.points[static_cast<std::size_t>(i)].depth < -sweep.near);
+        T distance = T(0);
+        if (!near) {
+            const std::optional<ShapeCastHit<T>> hit = detail::cast_triangle(swept_shape, pose, sweep_move, t);
+            if (!hit) return beside.push_back({t, k, c});
+            distance = hit->fraction * length(sweep_move);
+        }
+        turns.push_back({distance, t});
+        add(k, c);
+    };
     // A box takes its closed-form triangle test; the other kinds share one compiled copy of the
     // triangle pair (shape_ref.hpp).
     const auto collide_convex = [&](const auto& shape) {
@@ -286,24 +318,21 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
             m, box,
             [&](std::uint32_t k, const MeshTriangle<T>& t) {
                 const ContactManifold<T> c = detail::triangle_manifold(t, shape, pose, centre, margin, exact_depth_above);
-                if (c.count == 0 || out_of_reach(t, c)) return;
-                detail::NormalGroup<T>* group = nullptr;
-                for (detail::NormalGroup<T>& g : groups)
-                    if (dot(g.normal, c.normal) >= same_normal) {
-                        group = &g;
-                        break;
-                    }
-                if (!group) {
-                    groups.emplace_back();
-                    group = &groups.back();
-                    group->normal = c.normal;
-                }
-                group->add(c, k, size);
+                if (c.count > 0) classify(k, t, c);
             },
             reaches);
     };
     if (const Box<T>* cuboid = std::get_if<Box<T>>(&convex)) collide_convex(*cuboid);
     else collide_convex(detail::ShapeRef<T>(convex));
+    T first = ScalarTraits<T>::infinity;
+    for (const auto& turn : turns) first = std::min(first, turn.first);
+    for (const Beside& b : beside) {
+        bool rises = false;
+        for (const auto& [distance, under] : turns)
+            if (distance <= first + sweep.rise)
+                for (const Vec3<T>& v : b.triangle.v) rises = rises || dot(v - under.v[0], under.normal) > sweep.rise;
+        if (rises) add(b.index, b.manifold);
+    }
     for (detail::NormalGroup<T>& g : groups) {
         g.reduce();
         MeshContact<T> c;

@@ -1678,7 +1678,7 @@ SpeculativeSweep<T> World<T>::speculative_sweep(const Body<T>& a, std::uint32_t 
     const T turn = (length(a.angular_velocity_) * a.bounding_radius() + length(b.angular_velocity_) * b.bounding_radius()) * dt;
     const T near = settings_.speculative_distance;
     if (!(distance > T(0.5) * radius || (any_speed && distance > T(0))) || !(turn <= near)) return {};
-    return {move * ((distance + near) / distance), near};
+    return {move * ((distance + near) / distance), near, settings_.linear_slop};
 }
 
 /// How contact m, between a static body and a moving one, stands to the moving body's path in
@@ -1689,7 +1689,8 @@ SpeculativeSweep<T> World<T>::speculative_sweep(const Body<T>& a, std::uint32_t 
 /// static body at any speed: separate static boxes laid side by side (a floor of tiles) gave a
 /// body sliding over them manifolds with the neighbours beside its path, whose separating axis
 /// pointed along the motion (docs/meshes.md, "Separate bodies edge to edge"). Mesh pairs cull
-/// their triangles in collide_mesh; sensors and pairs of moving bodies are `none`.
+/// their triangles in collide_mesh, and their manifolds may turn the body; sensors and pairs of
+/// moving bodies are `none`.
 template <class T>
 typename World<T>::PathContact World<T>::path_of(std::uint32_t m, T dt) const {
     const Contact<T>& c = contacts_[m];
@@ -1697,14 +1698,13 @@ typename World<T>::PathContact World<T>::path_of(std::uint32_t m, T dt) const {
     const Body<T>& b = bodies_[c.b.index];
     PathContact out;
     const bool a_static = a.type_ == BodyType::static_body;
-    if (c.sensor || c.manifold.count == 0 || a_static == (b.type_ == BodyType::static_body) || a.mesh() || b.mesh() ||
-        seam_ghost(c))
-        return out;
+    if (c.sensor || c.manifold.count == 0 || a_static == (b.type_ == BodyType::static_body) || seam_ghost(c)) return out;
     const Vec3<T> towards_mover = a_static ? c.manifold.normal : -c.manifold.normal;
     out.kind = PathContact::turns;
     out.normal = towards_mover;
     const ContactPoint<T>& first = c.manifold.points[0];
     out.surface = (a_static ? b.world_point(first.local_b) : a.world_point(first.local_a)) + towards_mover * first.depth;
+    if (a.mesh() || b.mesh()) return out;  // a mesh's manifolds turn the body now; it dropped its triangles beside the path
     for (int i = 0; i < c.manifold.count; ++i)
         if (!(c.manifold.points[static_cast<std::size_t>(i)].depth < -settings_.speculative_distance)) return out;
     const SpeculativeSweep<T> sweep = speculative_sweep(a, c.child_a, b, dt, true);
@@ -1949,9 +1949,15 @@ void World<T>::mesh_manifolds(const ProxyPair& pair, T margin, T dt, MeshManifol
     const Body<T>& other = a.mesh() ? b : a;
     out.contacts.clear();
     out.parts.clear();
+    // A joint turns the body's path within the step (a flail swung into a post): no triangle is
+    // beside its path. Asked only of a body fast enough to sweep (jointed() reads every joint).
+    bool held = false, asked = false;
     for (std::uint32_t part = 0; part < other.child_count(); ++part) {
+        SpeculativeSweep<T> sweep = speculative_sweep(other, part, mesh, dt);
+        if (sweep.active() && !asked) held = jointed(a.mesh() ? pair.b : pair.a), asked = true;
+        if (held) sweep = {};
         collide_mesh(*mesh.mesh(), mesh.transform(), other.child_shape(part), other.child_transform(part), margin,
-                     settings_.linear_slop, out.contacts, speculative_sweep(other, part, mesh, dt));
+                     settings_.linear_slop, out.contacts, sweep);
         out.parts.resize(out.contacts.size(), part);
     }
 }
