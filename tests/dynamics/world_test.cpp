@@ -130,31 +130,37 @@ TEST_CASE_TEMPLATE("regression: a box on a turntable turns with it while omega^2
     // friction can hold it up to omega^2 r = mu g (kinematic_chord_slip, contact_solver.hpp).
     using T = typename C::T;
     const T mu_g = T(0.6) * T(9.81);
-    for (const T omega : {T(1), T(2.2), T(3)}) {
-        World<T> w(C::settings());
-        BodyDef<T> k;
-        k.type = BodyType::kinematic;
-        k.position = {T(0), T(-0.1), T(0)};
-        k.angular_velocity = {T(0), omega, T(0)};
-        const BodyId table = w.create_body(Cylinder<T>(T(3), T(0.1)), k);
-        BodyDef<T> def;  // at 1 m from the axis, moving with the platform
-        def.position = {T(1), T(0.25), T(0)};
-        def.linear_velocity = {T(0), T(0), -omega};
-        def.angular_velocity = {T(0), omega, T(0)};
-        const BodyId box = w.create_body(Box<T>(T(0.25), T(0.25), T(0.25)), def);
-        CAPTURE(omega);
-        if (omega * omega < mu_g) {
-            T drift = T(0);
-            test::simulate(w, T(10), [&](int) {
-                drift = std::max(drift, length(w.body(table).local_point(w.body(box).position()) - Vec3<T>{T(1), T(0.35), T(0)}));
-            });
-            CHECK(drift < T(0.002));
-        } else {
-            test::simulate(w, T(3));
-            const Vec3<T> p = w.body(box).position();
-            CHECK(std::sqrt(p.x * p.x + p.z * p.z) > T(3));  // thrown off the 3 m platform
+    for (const T omega : {T(1), T(2.2), T(3)})
+        for (const bool table_first : {true, false}) {  // the platform as body A of the contact, then as B
+            World<T> w(C::settings());
+            BodyDef<T> k;
+            k.type = BodyType::kinematic;
+            k.position = {T(0), T(-0.1), T(0)};
+            k.angular_velocity = {T(0), omega, T(0)};
+            BodyDef<T> def;  // at 1 m from the axis, moving with the platform
+            def.position = {T(1), T(0.25), T(0)};
+            def.linear_velocity = {T(0), T(0), -omega};
+            def.angular_velocity = {T(0), omega, T(0)};
+            const BodyId first =
+                table_first ? w.create_body(Cylinder<T>(T(3), T(0.1)), k) : w.create_body(Box<T>(T(0.25), T(0.25), T(0.25)), def);
+            const BodyId second =
+                table_first ? w.create_body(Box<T>(T(0.25), T(0.25), T(0.25)), def) : w.create_body(Cylinder<T>(T(3), T(0.1)), k);
+            const BodyId table = table_first ? first : second, box = table_first ? second : first;
+            CAPTURE(omega);
+            CAPTURE(table_first);
+            if (omega * omega < mu_g) {
+                T drift = T(0);
+                test::simulate(w, T(10), [&](int) {
+                    drift =
+                        std::max(drift, length(w.body(table).local_point(w.body(box).position()) - Vec3<T>{T(1), T(0.35), T(0)}));
+                });
+                CHECK(drift < T(0.002));
+            } else {
+                test::simulate(w, T(3));
+                const Vec3<T> p = w.body(box).position();
+                CHECK(std::sqrt(p.x * p.x + p.z * p.z) > T(3));  // thrown off the 3 m platform
+            }
         }
-    }
 }
 
 TEST_CASE_TEMPLATE("forces and impulses at a point change velocity and spin as Newton says", C, XENO_TEST_CONFIGS) {
