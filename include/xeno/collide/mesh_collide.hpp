@@ -324,10 +324,13 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
     };
     if (const Box<T>* cuboid = std::get_if<Box<T>>(&convex)) collide_convex(*cuboid);
     else collide_convex(detail::ShapeRef<T>(convex));
+    // Without a triangle of its own that turns the convex, this mesh cannot tell what will (a box
+    // ramp beside a wall that is a mesh of its own): it keeps them all, and the world's test of
+    // the body's contacts with static bodies (World::drop_out_of_reach) treats them as turning.
     T first = ScalarTraits<T>::infinity;
     for (const auto& turn : turns) first = std::min(first, turn.first);
     for (const Beside& b : beside) {
-        bool rises = false;
+        bool rises = turns.empty();
         for (const auto& [distance, under] : turns)
             if (distance <= first + sweep.rise)
                 for (const Vec3<T>& v : b.triangle.v) rises = rises || dot(v - under.v[0], under.normal) > sweep.rise;

@@ -2300,13 +2300,15 @@ bool World<T>::seam_ghost(const Contact<T>& c) const {
 }
 
 /// The point of a body's geometry farthest along the world direction d: its shape's support
-/// point, or for a compound or mesh the corner of its bounding box (higher than the geometry, so
-/// a test "no higher than" stays true only when the geometry is).
+/// point, or for a compound or mesh the corner of its own bounding box (higher than the geometry,
+/// so a test "no higher than" stays true only when the geometry is; not bounds_, the broad
+/// phase's, which the speculative margin makes 2 cm taller: no floor of mesh or compound tiles
+/// had a seam then).
 template <class T>
 Vec3<T> World<T>::highest_point(std::uint32_t slot, const Vec3<T>& d) const {
     const Body<T>& b = bodies_[slot];
     if (const Shape<T>* shape = b.convex_shape()) return b.world_point(support(*shape, b.local_vector(d)));
-    const Aabb<T>& box = bounds_[slot];
+    const Aabb<T> box = b.world_bounds();
     return {d.x >= T(0) ? box.max.x : box.min.x, d.y >= T(0) ? box.max.y : box.min.y, d.z >= T(0) ? box.max.z : box.min.z};
 }
 
