@@ -665,7 +665,7 @@ private:
     static void require_centred(const Shape<T>& shape, const char* where);
     void index_contacts(std::size_t slots);
     bool seam_ghost(const Contact<T>& contact) const;
-    Vec3<T> highest_point(std::uint32_t slot, const Vec3<T>& d) const;
+    Vec3<T> highest_point(std::uint32_t slot, const Vec3<T>& d, std::uint32_t near) const;
     void end_contact(const Contact<T>& c) {
         if (c.touching) events_pending_.push_back({ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0)});
     }
@@ -1749,7 +1749,7 @@ bool World<T>::out_of_reach(std::uint32_t m) const {
     for (std::uint32_t k = begin; k < end; ++k) {
         const PathContact& turn = path_[contact_list_[k]];
         if (turn.kind != PathContact::turns || !(turn.distance <= first + slop)) continue;
-        if (dot(highest_point(fixed, turn.normal) - turn.surface, turn.normal) > slop) return false;
+        if (dot(highest_point(fixed, turn.normal, mover) - turn.surface, turn.normal) > slop) return false;
     }
     return true;
 }
@@ -2294,22 +2294,53 @@ bool World<T>::seam_ghost(const Contact<T>& c) const {
         const Vec3<T> on_face = on_mover(face, 0) + n1 * face.manifold.points[0].depth;
         bool in_plane = true;
         for (int i = 0; i < c.manifold.count && in_plane; ++i) in_plane = std::abs(dot(on_mover(c, i) - on_face, n1)) <= slop;
-        if (in_plane && dot(highest_point(obstacle, n1) - on_face, n1) <= slop) return true;
+        if (in_plane && dot(highest_point(obstacle, n1, mover) - on_face, n1) <= slop) return true;
     }
     return false;
 }
 
-/// The point of a body's geometry farthest along the world direction d: its shape's support
-/// point, or for a compound or mesh the corner of its own bounding box (higher than the geometry,
-/// so a test "no higher than" stays true only when the geometry is; not bounds_, the broad
-/// phase's, which the speculative margin makes 2 cm taller: no floor of mesh or compound tiles
-/// had a seam then).
+/// The point of a body's geometry farthest along the world direction d, near the body in slot
+/// `near`: its shape's support point; for a compound, the highest of its parts' support points;
+/// for a mesh, the highest vertex of its triangles under `near`'s broad-phase box (a post or a
+/// hill elsewhere in a terrain chunk is not in the way), or the corner of its own bounding box
+/// (not bounds_, the broad phase's, which the speculative margin makes 2 cm taller: no floor of
+/// mesh or compound tiles had a seam then).
 template <class T>
-Vec3<T> World<T>::highest_point(std::uint32_t slot, const Vec3<T>& d) const {
+Vec3<T> World<T>::highest_point(std::uint32_t slot, const Vec3<T>& d, std::uint32_t near) const {
     const Body<T>& b = bodies_[slot];
     if (const Shape<T>* shape = b.convex_shape()) return b.world_point(support(*shape, b.local_vector(d)));
-    const Aabb<T> box = b.world_bounds();
-    return {d.x >= T(0) ? box.max.x : box.min.x, d.y >= T(0) ? box.max.y : box.min.y, d.z >= T(0) ? box.max.z : box.min.z};
+    const auto higher = [&](Vec3<T>& best, const Vec3<T>& p) {
+        if (dot(p, d) > dot(best, d)) best = p;
+    };
+    if (b.compound()) {
+        const auto part_top = [&](std::uint32_t i) {
+            const Transform<T> pose = b.child_transform(i);
+            return pose.apply(support(b.child_shape(i), inverse_rotate(pose.orientation, d)));
+        };
+        Vec3<T> best = part_top(0);
+        for (std::uint32_t i = 1; i < b.child_count(); ++i) higher(best, part_top(i));
+        return best;
+    }
+    const Aabb<T> own = b.world_bounds();
+    Vec3<T> best{d.x >= T(0) ? own.max.x : own.min.x, d.y >= T(0) ? own.max.y : own.min.y, d.z >= T(0) ? own.max.z : own.min.z};
+    if (const MeshShape<T>* mesh = b.mesh()) {
+        const Transform<T> pose = b.transform(), back = inverse(pose);
+        const Aabb<T>& there = bounds_[near];
+        const Mat3<T> r = to_matrix(back.orientation);
+        const Aabb<T> local =
+            Aabb<T>::from_center(back.apply(there.center()), Mat3<T>{abs(r[0]), abs(r[1]), abs(r[2])} * there.half_extents());
+        bool any = false;
+        Vec3<T> top{};
+        for_each_triangle(*mesh, local, [&](std::uint32_t, const MeshTriangle<T>& t) {
+            for (const Vec3<T>& v : t.v) {
+                const Vec3<T> p = pose.apply(v);
+                if (!any) top = p, any = true;
+                else higher(top, p);
+            }
+        });
+        if (any) best = top;
+    }
+    return best;
 }
 
 /// Every contact point is a spring of stiffness m_eff·ω² (m_eff its normal_mass), so a body on
