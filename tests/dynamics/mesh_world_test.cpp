@@ -7,6 +7,7 @@
 // and the calls that must refuse a mesh.
 #include "support/approx.hpp"
 #include "support/flat_level.hpp"
+#include "support/ramp_drop.hpp"
 #include "support/sim.hpp"
 
 #include "scenes/all.hpp"
@@ -392,7 +393,7 @@ TEST_CASE_TEMPLATE("regression: a ball and a box falling fast onto a mesh ramp a
         still.position = Vec3<T>{T(1), T(1), T(0)} * (T(-0.5) / std::sqrt(T(2)));
         w.create_body(Box<T>(T(4), T(0.5), T(2)), still);  // its top is the plane y = -x
     };
-    const T radius = T(0.1), x0 = T(1) - radius - T(0.1);
+    const T radius = T(0.1);
     const Shape<T> bodies[] = {Sphere<T>(radius), Box<T>(radius, radius, radius)};
     for (const bool one_mesh : {true, false})
         for (const Shape<T>& shape : bodies)
@@ -400,13 +401,7 @@ TEST_CASE_TEMPLATE("regression: a ball and a box falling fast onto a mesh ramp a
                 for (int phase = 0; phase < 5; ++phase) {
                     World<T> w(C::settings());
                     build(w, one_mesh);
-                    BodyDef<T> def;  // a few steps above the ramp, a different fraction of a step each time
-                    def.position = {x0, -x0 + radius * std::sqrt(T(2)) + speed / T(60) * (T(3) + T(phase) / T(5)), T(0)};
-                    def.linear_velocity = {T(0), -speed, T(0)};
-                    def.fast = true;
-                    const BodyId id = w.create_body(shape, def);
-                    T farthest = -ScalarTraits<T>::infinity;
-                    test::simulate(w, T(1.5), [&](int) { farthest = std::max(farthest, w.body(id).position().x); });
+                    const T farthest = test::farthest_after_ramp_drop(w, shape, radius, speed, phase);
                     CAPTURE(one_mesh);
                     CAPTURE(speed);
                     CAPTURE(phase);
