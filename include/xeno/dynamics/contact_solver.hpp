@@ -66,7 +66,7 @@ struct ContactConstraint {
     /// levers"): a flat or pointed side whose fixed levers would be off by more than
     /// levers_turn_far allows. Beside `count`, which the packing reads in the same cache line.
     bool turns_a = false, turns_b = false;
-    /// slip_1, slip_2 are not zero (kinematic_chord_slip): the row needs its group's WideTurn.
+    /// slip_1, slip_2 are not zero (chord_slip): the row needs its group's WideTurn.
     bool slips = false;
     std::array<ContactConstraintPoint<T>, 4> points{};
     // Central friction and twist.
@@ -74,7 +74,7 @@ struct ContactConstraint {
     T k11{}, k12{}, k22{};                           ///< inverse of the 2×2 tangent effective-mass matrix
     T friction_1{}, friction_2{};                    ///< N·s per substep along t1, t2
     T twist_mass{}, twist_impulse{}, twist_lever{};  ///< kg·m², N·m·s, m (the patch's mean radius, World::twist_lever)
-    T slip_1{}, slip_2{};                            ///< m/s along t1, t2: kinematic_chord_slip of B less A's
+    T slip_1{}, slip_2{};                            ///< m/s along t1, t2: chord_slip of B less A's
     /// m: the radius of each side's rounded surface at the contact (a sphere, a capsule, a
     /// cylinder's side; 0 for flat faces and edges). Such a surface rolls: its contact point stays
     /// at the bottom instead of turning with the body (rolling_rise in wide_contact_solver.hpp).
@@ -106,25 +106,40 @@ bool levers_turn_far(const ContactConstraint<T>& c, const Vec3<T>& w, T step, bo
     return step * length(w) * std::sqrt(reach) > kTurnSpeed;
 }
 
-/// A kinematic body turning at w carries a point at lever r along the chord of its turn, at
+/// A body turning at w carries a point at lever r along the chord of its turn, at
 /// (R(w h) − 1) r / h on average over a substep h, not at w × r, the tangent at the substep's
 /// start that the friction row's lever gives. The difference, about h |w|² r / 2 towards the
-/// axis, is what the friction row adds to its relative velocity, and such a side's levers turn
-/// with it through the substeps: a body held by friction then follows the turn and stays on its
-/// circle. With fixed levers it moved along the tangent each step, an explicit Euler step of the
-/// circle: a box on a turntable at 1 rad/s spiralled out by step² ω² r / 2 a step, 8 mm/s at
-/// 1 m, and at 2 rad/s slid off in 4 s (docs/solver.md, "Riding a turning body").
+/// axis, is what the friction row adds to its relative velocity, and a side that has it turns its
+/// levers through the substeps (turns_a, turns_b): a body held by friction then follows the turn
+/// and stays on its circle. With fixed levers it moved along the tangent each step, an explicit
+/// Euler step of the circle: a box on a turntable at 1 rad/s spiralled out by step² ω² r / 2 a
+/// step, 8 mm/s at 1 m, and at 2 rad/s slid off in 4 s (docs/solver.md, "Riding a turning body").
 /// Turning levers alone left an eighth of that (substep² instead of step²), and every step
 /// asked the first substep's friction for the whole turn of the step's velocity. The chord
 /// slip of R(w h) r is that of r turned by R(w h), as both turn about w; the row keeps the one of
-/// the step's start, off by the angle of one step.
+/// the step's start, off by the angle of one step. A dynamic body's w is the step's start too:
+/// its change over the step changes the slip by a term of the next order.
+///
+/// By Rodrigues' formula, with θ = |w| h and u = w / |w|, (R − 1) r = sin θ u × r +
+/// (1 − cos θ) u × (u × r), so the slip is ((sin θ − θ) u × r + 2 sin²(θ/2) u × (u × r)) / h:
+/// each term small and computed as such. Subtracting r from R r, as this did until the slip was
+/// given to dynamic bodies, lost the slip's last digits in float (1e-7 r / h, 5 % of it at 1 m
+/// and 1 rad/s).
 template <class T>
-Vec3<T> kinematic_chord_slip(const Vec3<T>& w, const Vec3<T>& r, T h) {
+Vec3<T> chord_slip(const Vec3<T>& w, const Vec3<T>& r, T h) {
     const T speed = length(w);
     if (!(speed > T(0))) return {};
-    const Vec3<T> chord = (rotate(Quat<T>::from_axis_angle(w / speed, speed * h), r) - r) / h;
-    return chord - cross(w, r);
+    const Vec3<T> u = w / speed, along = cross(u, r);
+    const T theta = speed * h, half_sine = std::sin(theta / T(2));
+    return (along * (std::sin(theta) - theta) + cross(u, along) * (T(2) * half_sine * half_sine)) / h;
 }
+
+/// m/s: the chord slip (chord_slip) below which a side's levers stay fixed and its row takes no
+/// slip: a drift of a tenth of a millimetre a second at the 8 substeps of the defaults. A box in
+/// a pile, turning at a thousandth of a radian a second, stays far below it and keeps the cheaper
+/// rows of fixed levers.
+template <class T>
+constexpr T kChordSlip = T(1e-5);
 
 /// What one solver pass needs to know.
 template <class T>

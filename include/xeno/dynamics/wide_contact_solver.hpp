@@ -62,7 +62,7 @@ struct WideContact {
     bool rolls;                ///< some lane has a rounded side (round_a or round_b > 0)
     bool bounces;              ///< some lane has a restitution (its points' approach speeds are kept)
     bool turns;                ///< some lane has a side whose levers turn or that slips (its WideTurn)
-    bool slips;                ///< some lane has a kinematic_chord_slip (in its WideTurn)
+    bool slips;                ///< some lane has a chord_slip (in its WideTurn)
     V count;                   ///< points per lane
     WideVec3<V> normal, t1, t2;
     V inv_mass_a, inv_mass_b, friction;

@@ -2479,16 +2479,19 @@ void World<T>::contact_row(std::uint32_t m, const detail::Softness<T>& soft, con
     const detail::Roundness<T> round_b = detail::roundness(b, contact.child_b, c.normal);
     c.round_a = round_a.rolling;
     c.round_b = round_b.rolling;
-    // A turning kinematic side's flat surface carries its contact round with it (a round one
-    // turns under a contact that stays put): its levers turn, and the row takes its chord slip.
-    const bool carries_a = sa.inv_mass == T(0) && c.round_a == T(0) && length_squared(va.w) > T(0);
-    const bool carries_b = sb.inv_mass == T(0) && c.round_b == T(0) && length_squared(vb.w) > T(0);
+    // A turning side's flat surface carries its contact round with it (a round one turns under
+    // a contact that stays put): its levers turn, and the row takes its chord slip, a kinematic
+    // turntable's or a dynamic disc's on a hinge alike.
+    const T h = step / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+    const Vec3<T> slip_a = c.round_a == T(0) ? detail::chord_slip(va.w, c.rc_a, h) : Vec3<T>{};
+    const Vec3<T> slip_b = c.round_b == T(0) ? detail::chord_slip(vb.w, c.rc_b, h) : Vec3<T>{};
+    const bool carries_a = length_squared(slip_a) > detail::kChordSlip<T> * detail::kChordSlip<T>;
+    const bool carries_b = length_squared(slip_b) > detail::kChordSlip<T> * detail::kChordSlip<T>;
     c.turns_a = carries_a || (sa.spins_far && c.round_a == T(0) && detail::levers_turn_far(c, va.w, step, false));
     c.turns_b = carries_b || (sb.spins_far && c.round_b == T(0) && detail::levers_turn_far(c, vb.w, step, true));
-    const T h = step / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
     Vec3<T> slip{};
-    if (carries_b) slip += detail::kinematic_chord_slip(vb.w, c.rc_b, h);
-    if (carries_a) slip -= detail::kinematic_chord_slip(va.w, c.rc_a, h);
+    if (carries_b) slip += slip_b;
+    if (carries_a) slip -= slip_a;
     c.slip_1 = dot(slip, c.t1);
     c.slip_2 = dot(slip, c.t2);
     c.slips = c.slip_1 != T(0) || c.slip_2 != T(0);
