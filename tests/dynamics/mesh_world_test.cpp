@@ -300,7 +300,9 @@ TEST_CASE_TEMPLATE("every kind of convex shape settles inside a bowl mesh and st
             default: bodies.push_back(w.create_body(Shape<T>(make_regular_prism<T>(7, T(0.4), T(0.3))), d)); break;
         }
     }
-    test::simulate(w, T(8));
+    // 12 s: the pile is chaotic, and a box tumbling off its top at 8 s (0.43 m/s) is a matter of
+    // its path, not of settling (that run had every body under 5 mm/s at 10 s).
+    test::simulate(w, T(12));
     for (BodyId id : bodies) {
         const Vec3<T> p = w.body(id).position();
         const T r2 = p.x * p.x + p.z * p.z;
@@ -308,7 +310,7 @@ TEST_CASE_TEMPLATE("every kind of convex shape settles inside a bowl mesh and st
         CHECK(is_finite(p));
         CHECK(r2 < T(16));                 // inside the rim
         CHECK(p.y > r2 / T(8) + T(0.15));  // above the surface under it (a cone's centre is 0.175 above its base)
-        CHECK(length(w.body(id).linear_velocity()) < T(0.1));  // settled
+        CHECK(length(w.body(id).linear_velocity()) < T(0.02));  // settled
     }
 }
 

@@ -85,6 +85,61 @@ TEST_CASE_TEMPLATE("a box sliding at 2 and 5 m/s with mu 0.5 stops within 2 % of
     }
 }
 
+// The friction row's 2×2 mass K holds the tipping terms (c × t)·I⁻¹·(c × t), which differ along
+// the two tangents of a body whose inertia differs across its sliding face; the normal rows stop
+// the tipping, so sliding friction should oppose the velocity. The row clamped K⁻¹ v radially to
+// the Coulomb disc, so it pushed along K⁻¹ v instead: a 1 × 0.2 × 0.4 m plate launched at 45°
+// across the ground ran off at 50°, and yawed half a radian on a 35° slope it slid 0.82 m
+// sideways in 3 s (the slide of a cube was exact).
+TEST_CASE_TEMPLATE("regression: a plate slides along its launch direction and down the fall line whatever its yaw", C,
+                   XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    const T mu = T(0.5), g = T(9.81), v0 = T(4);
+    const Vec3<T> plate{T(0.5), T(0.1), T(0.2)};
+    for (const T yaw : {T(0), T(0.5), T(1)})
+        for (const T heading : {T(20), T(45), T(70)}) {  // degrees from x, on the ground
+            World<T> w(C::settings());
+            ground_with_friction(w, mu);
+            BodyDef<T> def;
+            def.position = {T(0), plate.y, T(0)};
+            def.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_y(), yaw);
+            def.material.friction = mu;
+            const T a = radians(heading);
+            def.linear_velocity = Vec3<T>{std::cos(a), T(0), std::sin(a)} * v0;
+            const BodyId id = w.create_body(Box<T>(plate), def);
+            simulate(w, T(2));
+            const Vec3<T> p = w.body(id).position();
+            const T distance = std::sqrt(p.x * p.x + p.z * p.z), expected = v0 * v0 / (T(2) * mu * g);
+            CAPTURE(yaw);
+            CAPTURE(heading);
+            CAPTURE(distance);
+            CHECK(std::abs(std::atan2(p.z, p.x) - a) < radians(T(0.3)));
+            CHECK(std::abs(distance - expected) < T(0.02) * expected);
+        }
+    for (const T yaw : {T(0), T(0.5), T(1)}) {  // from rest down a 35° slope falling towards -x
+        World<T> w(C::settings());
+        const Quat<T> tilt = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), radians(T(35)));
+        BodyDef<T> ramp;
+        ramp.type = BodyType::static_body;
+        ramp.orientation = tilt;
+        ramp.material.friction = mu;
+        w.create_body(Box<T>(T(40), T(0.5), T(10)), ramp);
+        BodyDef<T> def;
+        def.orientation = tilt * Quat<T>::from_axis_angle(Vec3<T>::unit_y(), yaw);
+        def.position = rotate(tilt, Vec3<T>{T(20), T(0.5) + plate.y, T(0)});
+        def.material.friction = mu;
+        const BodyId id = w.create_body(Box<T>(plate), def);
+        const Vec3<T> start = w.body(id).position();
+        simulate(w, T(3));
+        const Vec3<T> moved = rotate(conjugate(tilt), w.body(id).position() - start);                      // in the slope's frame
+        const T along = radians(T(35)), expected = g * (std::sin(along) - mu * std::cos(along)) * T(4.5);  // a t^2 / 2
+        CAPTURE(yaw);
+        CAPTURE(moved);
+        CHECK(std::abs(moved.z) < T(0.01));
+        CHECK(std::abs(-moved.x - expected) < T(0.02) * expected);
+    }
+}
+
 // Spun on the ground about the vertical, a body resting on a flat face is braked by
 // µ m g ℓ, ℓ the mean distance of the face's area from its centre under a uniform pressure:
 // (√2 + ln(1 + √2)) a / 3 for a square of half side a, 2r/3 for a disc. Before ℓ was integrated

@@ -57,7 +57,7 @@ struct BodyDef {
     T density = T(1000);                        ///< kg/m³: mass = density × volume (dynamic, or on becoming dynamic)
     T mass = T(0);                              ///< kg: > 0 sets the mass directly, inertia scaled to it
     Material<T> material{};
-    T linear_damping = T(0);   ///< 1/s: v decays as 1/(1 + c dt) per step
+    T linear_damping = T(0);   ///< 1/s: v decays as 1/(1 + c h) per substep h (e^(-c t) to first order)
     T angular_damping = T(0);  ///< 1/s
     T gravity_scale = T(1);
     bool fast = false;  ///< continuous collision against static and kinematic bodies; speed cap 1e6 m/s (float), 1e10 (double)

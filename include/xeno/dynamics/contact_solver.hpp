@@ -141,6 +141,18 @@ Vec3<T> chord_slip(const Vec3<T>& w, const Vec3<T>& r, T h) {
 template <class T>
 constexpr T kChordSlip = T(1e-5);
 
+/// Sliding friction opposes the sliding velocity (the most dissipative impulse on Coulomb's disc).
+/// The friction row's 2×2 mass K holds each body's tipping terms (c × t)·I⁻¹·(c × t), which
+/// differ along the two tangents when the inertia differs across the contact face; a sticking
+/// row needs them (its impulse must stop the patch centre), but a sliding body's normal rows
+/// stop the tipping, and the accumulated impulse f − K⁻¹ v, clamped radially to the disc, came to
+/// rest along K⁻¹ v: a 1 × 0.2 × 0.4 m plate launched at 45° ran off at 50°, and yawed on a 35°
+/// slope it slid 0.82 m sideways in 3 s (docs/solver-design.md, "Central friction"). So when
+/// f − K⁻¹ v leaves the disc the row takes f − m̄ v instead, m̄ the mean of K⁻¹'s diagonal (any
+/// positive scalar keeps the step along −v), scaled to the rim: its fixed point is −µλ v / |v|,
+/// and a body near sticking, v small, keeps the direction of its accumulated impulse.
+/// ("sliding_friction_step" names this rule in the solver's comments.)
+
 /// What one solver pass needs to know.
 template <class T>
 struct SolvePass {
@@ -168,11 +180,10 @@ void bounce_friction(const ContactConstraint<T>& c, SolverBody<T>& a, SolverBody
     T f1 = -(c.k11 * v1 + c.k12 * v2);
     T f2 = -(c.k12 * v1 + c.k22 * v2);
     const T bound = c.friction * c.bounce_impulse;
-    const T magnitude_sq = f1 * f1 + f2 * f2;
-    if (magnitude_sq > bound * bound) {
-        const T scale = bound / std::sqrt(magnitude_sq);
-        f1 *= scale;
-        f2 *= scale;
+    if (f1 * f1 + f2 * f2 > bound * bound) {  // sliding: against the velocity (sliding_friction_step)
+        const T speed = std::sqrt(v1 * v1 + v2 * v2);
+        f1 = -bound * v1 / speed;
+        f2 = -bound * v2 / speed;
     }
     const Vec3<T> impulse = c.t1 * f1 + c.t2 * f2;
     apply_impulse(a, ma, c.rc_a, -impulse);

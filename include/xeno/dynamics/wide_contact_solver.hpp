@@ -389,11 +389,15 @@ XENO_WIDE_INLINE void solve_group(WideContact<T, W>& c, const WideTurn<Wide<T, W
     V f1 = c.friction_1 - (c.k11 * v1 + c.k12 * v2);
     V f2 = c.friction_2 - (c.k12 * v1 + c.k22 * v2);
     const V bound = c.friction * total;
-    const V magnitude_sq = f1 * f1 + f2 * f2;
-    const typename V::Mask outside = magnitude_sq > bound * bound;
-    const V scale = bound / sqrt(select(outside, magnitude_sq, one));
-    f1 = select(outside, f1 * scale, f1);
-    f2 = select(outside, f2 * scale, f2);
+    const typename V::Mask outside = f1 * f1 + f2 * f2 > bound * bound;
+    // Sliding: the impulse goes to the disc's rim along the sliding velocity, not along K⁻¹ v
+    // (sliding_friction_step in contact_solver.hpp says why).
+    const V mean_mass = (c.k11 + c.k22) * V::splat(T(0.5));
+    const V g1 = c.friction_1 - mean_mass * v1, g2 = c.friction_2 - mean_mass * v2;
+    const V slide_sq = g1 * g1 + g2 * g2;
+    const V scale = bound / sqrt(select(outside, select(slide_sq > zero, slide_sq, one), one));
+    f1 = select(outside, g1 * scale, f1);
+    f2 = select(outside, g2 * scale, f2);
     const V d1 = f1 - c.friction_1, d2 = f2 - c.friction_2;
     c.friction_1 = f1;
     c.friction_2 = f2;
