@@ -7,6 +7,8 @@
 // unaffected.
 #include "support/sim.hpp"
 
+#include <xeno/dynamics/snapshot.hpp>
+
 #include <atomic>
 #include <cstdlib>
 #include <new>
@@ -120,4 +122,34 @@ TEST_CASE("reserve and 1,000 moving bodies allocate no room in the static bodies
     const std::vector<BodyId> hits = w.query_point({0.0f, 0.0f, 0.0f});
     REQUIRE(hits.size() == 1);
     CHECK(hits[0] == ids[0]);
+}
+
+TEST_CASE_TEMPLATE("regression: a snapshot claiming more shapes or bodies than its bytes hold allocates in proportion to it", T,
+                   float, double) {
+    // Counts were bounded by the buffer's size in bytes, and the tables sized by them up front: an
+    // 8 MB buffer of zeros after a header claimed 1.6 million dead body slots and allocated 2.4 GB
+    // before it was found truncated; 16 MB of sphere records no body used were accepted (820 MB).
+    const std::vector<std::uint8_t> empty = save_snapshot(World<T>());
+    const std::size_t counts = empty.size() - 10 * 8;  // shapes, compounds, bodies, then 7 tables
+    auto put = [](std::vector<std::uint8_t>& b, auto value) {
+        const auto* p = reinterpret_cast<const std::uint8_t*>(&value);
+        b.insert(b.end(), p, p + sizeof(value));
+    };
+    const std::size_t megabyte = 1 << 20;
+    std::vector<std::uint8_t> spheres(empty.begin(), empty.begin() + static_cast<std::ptrdiff_t>(counts));
+    const std::uint64_t sphere_count = megabyte / (4 + sizeof(T));
+    put(spheres, sphere_count);
+    for (std::uint64_t i = 0; i < sphere_count; ++i) put(spheres, std::uint32_t(0)), put(spheres, T(0.5));
+    for (int i = 0; i < 9; ++i) put(spheres, std::uint64_t(0));
+    std::vector<std::uint8_t> slots(empty.begin(), empty.begin() + static_cast<std::ptrdiff_t>(counts));
+    put(slots, std::uint64_t(0)), put(slots, std::uint64_t(0)), put(slots, std::uint64_t(megabyte / 5));
+    slots.resize(slots.size() + megabyte);  // dead slots: alive 0, generation 0; no tables after them
+    for (const std::vector<std::uint8_t>* bytes : {&spheres, &slots}) {
+        World<T> w;
+        const long before = allocated_bytes.load();
+        CHECK_THROWS_AS(restore_snapshot(w, *bytes), InvalidArgument);
+        const long used = allocated_bytes.load() - before;
+        CAPTURE(used);
+        CHECK(used < 8 * static_cast<long>(bytes->size()));
+    }
 }

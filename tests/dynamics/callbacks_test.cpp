@@ -205,3 +205,36 @@ TEST_CASE_TEMPLATE("a listener may change the world but not step it", T, float, 
     for (int i = 0; i < 30; ++i) w.step(T(1) / T(60));
     CHECK(is_finite(w.body(created[0]).position()));
 }
+
+TEST_CASE_TEMPLATE("regression: a listener that restores a snapshot or throws inside update() leaves the accumulator in range", T,
+                   float, double) {
+    // update() took a step's time from the accumulator after the step: a restore inside the
+    // listener had already replaced the accumulator, which ended at -dt (interpolation factor -1,
+    // and the world's own snapshot was rejected: "the accumulator must be finite and >= 0"); a
+    // listener that threw left the step's time in it, to be stepped again.
+    const T dt = T(1) / T(60);
+    {
+        World<T> w(test::awake_settings<T>());
+        resting_boxes(w, 2);
+        const std::vector<std::uint8_t> saved = save_snapshot(w);
+        bool restored = false;
+        w.set_contact_listener([&](World<T>& world, const ContactEvent<T>&) {
+            if (!restored) restored = true, restore_snapshot(world, saved);
+        });
+        w.update(dt);
+        CHECK(restored);
+        CHECK(w.interpolation_factor() >= T(0));
+        CHECK(w.interpolation_factor() < T(1));
+        World<T> copy;
+        CHECK_NOTHROW(restore_snapshot(copy, save_snapshot(w)));
+    }
+    {
+        World<T> w(test::awake_settings<T>());
+        resting_boxes(w, 2);
+        w.set_contact_listener([](World<T>&, const ContactEvent<T>&) { throw std::runtime_error("listener"); });
+        CHECK_THROWS_AS(w.update(T(0.1)), std::runtime_error);  // six steps due; the first one's listener throws
+        CHECK(w.interpolation_factor() >= T(0));
+        CHECK(w.interpolation_factor() < T(6));  // the step taken is not counted again
+        CHECK(test::near(w.interpolation_factor(), T(5), T(1e-3)));
+    }
+}

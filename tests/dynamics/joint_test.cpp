@@ -275,3 +275,19 @@ TEST_CASE_TEMPLATE("joint limits hold as firmly when the contacts are set less d
         CHECK(worst < radians(T(3.2)));
     }
 }
+
+TEST_CASE_TEMPLATE("regression: hinge_angle and slider_translation reject joints of other kinds", T, float, double) {
+    // A ball joint read a hinge angle and a slider translation of 0.
+    World<T> w;
+    const BodyId ground = scenes::add_ground(w);
+    BodyDef<T> d;
+    d.position = {T(0), T(2), T(0)};
+    const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    const JointId ball = w.create_joint(JointDef<T>::ball(ground, box, Vec3<T>{T(0), T(3), T(0)}));
+    CHECK_THROWS_AS(w.hinge_angle(ball), InvalidArgument);
+    CHECK_THROWS_AS(w.slider_translation(ball), InvalidArgument);
+    const JointId slider =
+        w.create_joint(JointDef<T>::prismatic(ground, box, Vec3<T>{T(0), T(2), T(0)}, Vec3<T>{T(1), T(0), T(0)}));
+    CHECK_THROWS_AS(w.hinge_angle(slider), InvalidArgument);
+    CHECK(w.slider_translation(slider) == T(0));
+}

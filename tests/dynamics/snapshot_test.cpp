@@ -4,6 +4,7 @@
 // Snapshots: stepping after a restore is bitwise identical to stepping the original.
 #include "robustness/state_hash.hpp"
 #include "support/approx.hpp"
+#include "support/shuffled_tasks.hpp"
 #include "support/sim.hpp"
 
 #include "scenes/all.hpp"
@@ -272,4 +273,20 @@ TEST_CASE_TEMPLATE("a kinematic press at 1e6 m/s leaves a world whose own snapsh
     world.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
     step_restoring(world, 20, [](int) {});
     CHECK(world.body(pressed).position().y < T(0.5));  // pressed down, not left where it rested
+}
+
+TEST_CASE_TEMPLATE("regression: a restore keeps the restoring world's workers and task system", T, float, double) {
+    // docs/parallel.md: a restored snapshot steps on whatever the restoring world was given; the
+    // restore moved a fresh world in, and a world of 2 workers stepped on 1 after it.
+    World<T> w;
+    scenes::add_ground(w);
+    const std::vector<std::uint8_t> saved = save_snapshot(w);
+    w.set_workers(2);
+    restore_snapshot(w, saved);
+    CHECK(w.workers() == 2u);
+    xeno::test::ShuffledTasks tasks(3);
+    w.set_task_system(&tasks);
+    restore_snapshot(w, saved);
+    CHECK(w.workers() == tasks.workers());
+    w.set_task_system(nullptr);
 }

@@ -149,6 +149,15 @@ TEST_CASE_TEMPLATE("polyhedron construction rejects broken input with a clear me
     auto inside_out = faces;
     for (auto& f : inside_out) std::reverse(f.begin(), f.end());
     CHECK(message([&] { ConvexPolyhedron<T>(v, inside_out); }) != "no error");
+    // Regression: a face listing a vertex twice (next to itself, or closing on its first) was
+    // accepted, its self-loop edge passing the closure check and missing from the edge list.
+    for (const bool closing : {false, true}) {
+        auto repeated = faces;
+        if (closing) repeated[0].push_back(repeated[0][0]);
+        else repeated[0].insert(repeated[0].begin() + 1, repeated[0][1]);
+        CAPTURE(closing);
+        CHECK(message([&] { ConvexPolyhedron<T>(v, repeated); }).find("lists a vertex twice") != std::string::npos);
+    }
 }
 
 TEST_CASE_TEMPLATE("regression: two shells (a doubled surface, a nested copy) are not one polyhedron", T, float, double) {

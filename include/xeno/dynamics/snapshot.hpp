@@ -84,6 +84,15 @@ public:
         return b == 1;
     }
     bool done() const { return offset_ == bytes_.size(); }
+    std::size_t remaining() const { return bytes_.size() - offset_; }
+    /// A count read before the records it counts, each at least `record` bytes of what follows:
+    /// larger than the rest of the buffer can hold is rejected before anything is sized by it
+    /// (an 8 MB buffer of zeros claimed 1.6 million bodies and allocated 2.4 GB).
+    std::uint64_t get_count(std::size_t record, const char* what) {
+        const std::uint64_t n = get<std::uint64_t>();
+        if (n > remaining() / record) report_invalid("restore_snapshot", what, static_cast<double>(n));
+        return n;
+    }
 
 private:
     const std::vector<std::uint8_t>& bytes_;
@@ -202,6 +211,23 @@ struct SnapshotAccess {
     // (ranges, finiteness, enum values, bools), and the cross-references the step relies on
     // (free slots are exactly the dead slots, contacts and joints join living bodies, contacts are
     // sorted as the narrow phase merges them). A corrupt buffer is rejected, never simulated.
+    // The fewest bytes a record takes in the buffer, to bound the counts read before them
+    // (ByteReader::get_count): a shape is at least its kind and one scalar (a sphere); a body
+    // slot at least its alive flag and generation, plus its world box and last pose in the
+    // tables after the bodies; a living body at least that, its geometry indices, pose,
+    // velocities and inertia.
+    static constexpr std::size_t kShapeBytes = 4 + sizeof(T);
+    static constexpr std::size_t kSlotBytes = 1 + 4 + sizeof(Aabb<T>) + sizeof(Transform<T>);
+    static constexpr std::size_t kLiveBodyBytes = kSlotBytes + 8 + 3 * sizeof(Vec3<T>) + sizeof(Quat<T>) + sizeof(Mat3<T>);
+    static void check_geometry_used(const std::vector<std::shared_ptr<const Shape<T>>>& shapes,
+                                    const std::vector<std::shared_ptr<const Compound<T>>>& compounds) {
+        for (std::size_t i = 0; i < shapes.size(); ++i)
+            if (shapes[i].use_count() == 1)
+                detail::report_invalid("restore_snapshot", "a shape no body uses; shape", static_cast<double>(i));
+        for (std::size_t i = 0; i < compounds.size(); ++i)
+            if (compounds[i].use_count() == 1)
+                detail::report_invalid("restore_snapshot", "a compound no body uses; compound", static_cast<double>(i));
+    }
     static void check_settings(const WorldSettings<T>& s);
     static void check_compound(const Compound<T>& c);
     static void check_body(const World<T>& w, std::uint32_t slot);
@@ -277,10 +303,11 @@ struct SnapshotAccess {
     }
 
     /// One compound, restored field by field: rebuilding it would re-centre it by round-off.
-    static std::shared_ptr<const Compound<T>> read_compound(detail::ByteReader& r, std::size_t size) {
-        const std::uint64_t n = r.get<std::uint64_t>();
+    static std::shared_ptr<const Compound<T>> read_compound(detail::ByteReader& r) {
+        const std::uint64_t n =
+            r.get_count(kShapeBytes + sizeof(Transform<T>), "a compound has more parts than the buffer holds");
         Compound<T> compound;
-        for (std::uint64_t i = 0; i < n && i < size; ++i) {
+        for (std::uint64_t i = 0; i < n; ++i) {
             Shape<T> shape = detail::read_shape<T>(r);
             compound.children_.push_back({std::move(shape), r.get<Transform<T>>()});
         }
@@ -349,17 +376,20 @@ struct SnapshotAccess {
         if (!(std::isfinite(out.accumulator_) && out.accumulator_ >= T(0)))
             detail::report_invalid("restore_snapshot", "the accumulator must be finite and >= 0",
                                    static_cast<double>(out.accumulator_));
-        std::vector<std::shared_ptr<const Shape<T>>> shapes(
-            static_cast<std::size_t>(std::min<std::uint64_t>(r.get<std::uint64_t>(), bytes.size())));
+        // Every count is bounded by the bytes its records need (get_count), and the tables grow
+        // as records are read: a restore allocates in proportion to its buffer. A shape or
+        // compound needs a living body's record too, and save_snapshot writes none that no body
+        // uses (check_geometry_used).
+        std::vector<std::shared_ptr<const Shape<T>>> shapes(static_cast<std::size_t>(
+            r.get_count(kShapeBytes + kLiveBodyBytes, "more shapes than the buffer can hold; shape count")));
         for (auto& s : shapes) s = std::make_shared<const Shape<T>>(detail::read_shape<T>(r));
-        std::vector<std::shared_ptr<const Compound<T>>> compounds(
-            static_cast<std::size_t>(std::min<std::uint64_t>(r.get<std::uint64_t>(), bytes.size())));
-        for (auto& c : compounds) c = read_compound(r, bytes.size());
-        const std::uint64_t body_count = r.get<std::uint64_t>();
-        if (body_count > bytes.size())
-            detail::report_invalid("restore_snapshot", "body count runs past the buffer", static_cast<double>(body_count));
+        std::vector<std::shared_ptr<const Compound<T>>> compounds(static_cast<std::size_t>(r.get_count(
+            8 + kShapeBytes + sizeof(Transform<T>) + kLiveBodyBytes, "more compounds than the buffer can hold; compound count")));
+        for (auto& c : compounds) c = read_compound(r);
+        const std::uint64_t body_count = r.get_count(kSlotBytes, "more bodies than the buffer can hold; body count");
         out.bodies_.resize(static_cast<std::size_t>(body_count));
         for (Body<T>& b : out.bodies_) read_body(r, shapes, compounds, b);
+        check_geometry_used(shapes, compounds);
         out.free_slots_ = r.get_vector<std::uint32_t>();
         out.bounds_ = r.get_vector<Aabb<T>>();
         out.previous_pose_ = r.get_vector<Transform<T>>();
@@ -376,9 +406,11 @@ struct SnapshotAccess {
         if (std::any_of(out.joints_.begin(), out.joints_.end(), [](const Joint<T>& j) { return j.alive; })) out.bind_joints();
         out.rebuild_query_tree();
         out.index_contacts(out.bodies_.size());
-        // Keep the target's callbacks; take everything else.
+        // Keep the target's callbacks and where it steps (its pool or the game's task system,
+        // docs/parallel.md: they are the machine's, not the scene's); take everything else.
         out.listener_ = std::move(world.listener_);
         out.filter_ = std::move(world.filter_);
+        out.tasks_ = std::move(world.tasks_);
         out.in_listener_ = world.in_listener_;  // restored from inside the listener: still inside it
         world = std::move(out);
     }

@@ -281,14 +281,22 @@ public:
     }
     /// The joint of a handle; a stale or invalid handle is reported (InvalidArgument).
     const Joint<T>& joint(JointId id) const { return joints_[checked(id, "World::joint")]; }
-    /// The current hinge angle (rad) of a hinge joint.
+    /// The current hinge angle (rad) of a hinge joint; another kind of joint is reported
+    /// (InvalidArgument), as it has no hinge axis (a ball joint read 0).
     T hinge_angle(JointId id) const {
         const Joint<T>& j = joint(id);
+        if (j.type != JointType::hinge)
+            detail::report_invalid("World::hinge_angle", "only a hinge has a hinge angle; joint type",
+                                   static_cast<double>(j.type));
         return j.hinge_angle(bodies_[j.a.index].orientation_, bodies_[j.b.index].orientation_);
     }
-    /// The translation (m) of a slider's anchor on B from its anchor on A, along A's axis.
+    /// The translation (m) of a slider's anchor on B from its anchor on A, along A's axis; another
+    /// kind of joint is reported (InvalidArgument).
     T slider_translation(JointId id) const {
         const Joint<T>& j = joint(id);
+        if (j.type != JointType::prismatic)
+            detail::report_invalid("World::slider_translation", "only a slider has a translation; joint type",
+                                   static_cast<double>(j.type));
         const Body<T>& a = bodies_[j.a.index];
         const Body<T>& b = bodies_[j.b.index];
         return dot(b.world_point(j.local_anchor_b) - a.world_point(j.local_anchor_a), a.world_vector(j.local_axis_a));
@@ -995,14 +1003,19 @@ int World<T>::update(T seconds) {
     require_outside_callbacks("World::update");
     detail::require_non_negative(seconds, "World::update", "seconds");
     accumulator_ += seconds;
-    const T dt = settings_.fixed_time_step;
     int steps = 0;
-    while (accumulator_ >= dt && steps < settings_.max_steps_per_update) {
-        step(dt);
+    // The step's time leaves the accumulator before the step: a listener that restores a
+    // snapshot replaces the accumulator (subtracting afterwards left it at -dt, and the world's
+    // own snapshot was rejected), and one that throws leaves the step counted. The settings are
+    // read afresh each time, as a listener may change them.
+    while (accumulator_ >= settings_.fixed_time_step && steps < settings_.max_steps_per_update) {
+        const T dt = settings_.fixed_time_step;
         accumulator_ -= dt;
         ++steps;
+        step(dt);
     }
-    if (accumulator_ >= dt) accumulator_ = std::fmod(accumulator_, dt);  // dropped: too far behind
+    if (accumulator_ >= settings_.fixed_time_step)  // dropped: too far behind
+        accumulator_ = std::fmod(accumulator_, settings_.fixed_time_step);
     return steps;
 }
 

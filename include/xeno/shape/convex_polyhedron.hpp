@@ -294,6 +294,13 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices, const std::
             if (index >= n)
                 detail::report_invalid(where, (face_name + " has a vertex index out of range").c_str(),
                                        static_cast<double>(index));
+        // A vertex listed twice makes an edge from it to itself, which the closure check below
+        // let pass and the edge list left out ({0, 4, 4, 6, 2} on a cube was accepted).
+        std::vector<std::uint32_t> sorted(face);
+        std::sort(sorted.begin(), sorted.end());
+        const auto repeat = std::adjacent_find(sorted.begin(), sorted.end());
+        if (repeat != sorted.end())
+            detail::report_invalid(where, (face_name + " lists a vertex twice; vertex").c_str(), static_cast<double>(*repeat));
         Vec3<T> newell = Vec3<T>::zero(), centre = Vec3<T>::zero();
         T longest_edge = T(0);
         for (std::size_t k = 0; k < face.size(); ++k) {
