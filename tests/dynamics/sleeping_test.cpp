@@ -364,3 +364,33 @@ TEST_CASE_TEMPLATE("a box sliding slowly from rest down a ramp does not fall asl
         CHECK(std::abs(with_sleep - without) <= 0.01 * expected);
     }
 }
+
+TEST_CASE_TEMPLATE("regression: in zero gravity a ball struck by a light one drifts on below the sleep speed", T, float, double) {
+    // Sleeping stopped any island slower than the sleep speeds for 0.5 s, one in free flight too:
+    // a 100 kg ball struck head-on by a 1 kg ball at 2 m/s (e = 1) left at 4 cm/s and stopped
+    // 0.5 s later, turning the pair's momentum from +2 to -2 kg m/s. A body at rest in free flight
+    // still sleeps.
+    WorldSettings<T> s;  // the defaults: sleeping on
+    s.gravity = Vec3<T>::zero();
+    World<T> w(s);
+    BodyDef<T> d;
+    d.material.restitution = T(1);
+    d.mass = T(1);
+    d.position = {T(-2), T(0), T(0)};
+    d.linear_velocity = {T(2), T(0), T(0)};
+    const BodyId light = w.create_body(Sphere<T>(T(0.1)), d);
+    d.mass = T(100);
+    d.position = {T(0), T(0), T(0)};
+    d.linear_velocity = {};
+    const BodyId heavy = w.create_body(Sphere<T>(T(0.5)), d);
+    d.mass = T(1);
+    d.position = {T(0), T(5), T(0)};
+    const BodyId idle = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    test::simulate(w, T(4));
+    const T expected = T(2) * T(2) * T(1) / T(101);  // 2 m1 v / (m1 + m2)
+    CHECK(w.body(heavy).awake());
+    CHECK(test::near(w.body(heavy).linear_velocity().x, expected, T(1e-3)));
+    const T momentum = w.body(light).linear_velocity().x + T(100) * w.body(heavy).linear_velocity().x;
+    CHECK(test::near(momentum, T(2), T(1e-3)));
+    CHECK_FALSE(w.body(idle).awake());
+}

@@ -634,6 +634,7 @@ private:
     void update_sleep(T dt);
     void run_sleep_clocks(T dt);
     void keep_moving_islands_awake();
+    void keep_drifting_islands_awake();
     bool sliding(const Contact<T>& c) const;
     void update_query_tree();
     void rebuild_query_tree();
@@ -745,7 +746,7 @@ private:
     std::vector<std::uint32_t> contact_start_;       ///< per slot: the end of its run in contact_list_ (index_contacts)
     std::vector<std::uint32_t> contact_list_;        ///< contact indices grouped by body slot
     std::vector<std::uint32_t> island_parent_;       ///< union–find parents per slot (wake, sleep)
-    std::vector<std::uint8_t> island_flag_;          ///< per island root: wake it
+    std::vector<std::uint8_t> island_flag_;          ///< per island root: wake it, or (falling asleep) held
     std::vector<T> island_sleep_time_;               ///< per island root: the least sleep clock
     std::vector<std::uint32_t> pair_degree_;         ///< per slot: broad-phase pairs (crowd thinning)
     std::vector<std::uint64_t> crowd_histogram_;     ///< pairs by crowd size (crowd thinning)
@@ -2841,6 +2842,42 @@ void World<T>::keep_moving_islands_awake() {
                 (length_squared(kin.linear_velocity_) > T(0) || length_squared(kin.angular_velocity_) > T(0)))
                 island_min[island_root(d)] = T(0);
         }
+    }
+    keep_drifting_islands_awake();
+}
+
+/// An island in free flight, held by no static or kinematic body through a contact or a joint,
+/// keeps its momentum: it stays awake while any of its bodies moves at all. Sleeping stops a
+/// body, and only a contact or a joint may take its momentum: in zero gravity a 100 kg ball
+/// struck by a 1 kg ball drifted off at 4 cm/s, under the sleep speed, and stopped 0.5 s later,
+/// turning the pair's momentum from +2 to −2 kg·m/s. (Under gravity no island floats that slowly
+/// for sleep_time, bar one whose gravity_scale is 0.) The island's clock is set back as the
+/// sliding rule above does; an island at rest in free flight still sleeps.
+template <class T>
+void World<T>::keep_drifting_islands_awake() {
+    std::vector<T>& island_min = island_sleep_time_;
+    const auto would_sleep = [&](std::uint32_t i) {
+        const Body<T>& b = bodies_[i];
+        return b.alive_ && b.type_ == BodyType::dynamic && b.awake_ && island_min[island_root(i)] >= settings_.sleep_time;
+    };
+    bool any = false;  // nearly every step nothing is about to sleep
+    for (std::uint32_t i = 0; i < bodies_.size() && !any; ++i) any = would_sleep(i);
+    if (!any) return;
+    std::vector<std::uint8_t>& held = island_flag_;  // scratch here: wake_touched_islands is done with it
+    held.assign(bodies_.size(), 0);
+    const auto hold = [&](std::uint32_t a, std::uint32_t b) {  // a body of one side held by the other
+        if (bodies_[a].type_ != BodyType::dynamic) held[island_root(b)] = 1;
+        if (bodies_[b].type_ != BodyType::dynamic) held[island_root(a)] = 1;
+    };
+    for (const Contact<T>& c : contacts_)
+        if (!c.sensor && c.manifold.count > 0 && (c.touching || within_slop(c))) hold(c.a.index, c.b.index);
+    for (const Joint<T>& j : joints_)
+        if (joint_active(j)) hold(j.a.index, j.b.index);
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+        const Body<T>& b = bodies_[i];
+        if (would_sleep(i) && !held[island_root(i)] &&
+            (length_squared(b.linear_velocity_) > T(0) || length_squared(b.angular_velocity_) > T(0)))
+            island_min[island_root(i)] = T(0);
     }
 }
 
