@@ -566,7 +566,7 @@ private:
         PairKind kind;
     };
     void prepare_joints(T h);
-    void turn_joint_inertias();
+    void turn_joint_inertias(T h);
     // Joints and mesh pairs are stages a world binds when it first needs them: the step reaches
     // them through the member pointers joint_stage_ and mesh_stage_, which the first create_joint
     // (or a snapshot holding joints) and the first mesh or heightfield body set. A program that
@@ -2592,13 +2592,24 @@ detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, con
 // R I₀⁻¹ Rᵀ); only an anisotropic one's changes. Frozen at the step's start, a disc spinning at
 // 200 rad/s on a ball joint, precessing at 0.74 rad/s, met its joint's torque with the inertia of
 // an axis up to 0.7° behind, which fed its spin 0.35 % a second at any substep count.
+// Each row also takes its anchors' chord pull for the coming substep h (detail::chord_pull): the
+// position update carries an anchor along the chord of its body's turn, not along the tangent
+// ω × r the row holds, and where ω is not square to the lever the chord's pull towards the axis
+// has a part off the lever, which the relax pass turned into a steady loss: that disc's axle, at
+// 0.3 m, sank 16° in 4 s (about 3° a second at any spin), now 3.5° (docs/solver.md, "A gyroscope
+// on a ball joint").
 template <class T>
-void World<T>::turn_joint_inertias() {
+void World<T>::turn_joint_inertias(T h) {
     const auto turned = [&](std::uint32_t k) {
         const Mat3<T> r = to_matrix(solver_bodies_[k].dq);
         return r * solver_masses_[k].inv_inertia * transpose(r);
     };
+    const auto slip = [&](std::uint32_t k, const Vec3<T>& r0) {
+        const detail::SolverBody<T>& s = solver_bodies_[k];
+        return k == 0 ? Vec3<T>{} : detail::chord_pull(s.w, rotate(s.dq, r0), h);
+    };
     for (detail::JointConstraint<T>& c : joint_rows_) {
+        c.slip = slip(c.b, c.r_b0) - slip(c.a, c.r_a0);
         if (c.a != 0 && integration_[c.a].gyroscopic) c.mass_a.inv_inertia = turned(c.a);
         if (c.b != 0 && integration_[c.b].gyroscopic) c.mass_b.inv_inertia = turned(c.b);
     }

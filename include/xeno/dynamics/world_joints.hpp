@@ -274,7 +274,7 @@ template <class T>
 void World<T>::run_joint_stage(JointStage stage, T h) {
     switch (stage) {
         case JointStage::prepare: prepare_joints(h); return;
-        case JointStage::turn_inertias: turn_joint_inertias(); return;
+        case JointStage::turn_inertias: turn_joint_inertias(h); return;
         case JointStage::warm_start:
             for (const detail::JointConstraint<T>& c : joint_rows_)
                 detail::warm_start_joint(joints_[c.joint], c, solver_bodies_[c.a], solver_bodies_[c.b]);
