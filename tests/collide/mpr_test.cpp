@@ -9,6 +9,7 @@
 
 #include "scenes/random.hpp"
 
+#include <xeno/collide/collide.hpp>
 #include <xeno/collide/mpr.hpp>
 #include <xeno/collide/sat.hpp>
 #include <xeno/shape/polyhedra.hpp>
@@ -225,6 +226,25 @@ TEST_CASE_TEMPLATE("touching without overlap is a miss, and never NaN", T, float
     }
     CHECK(first_hit == 17);  // x = -0.99: first overlap after touching at -1
     CHECK(last_hit == 83);   // x = +0.99
+}
+
+TEST_CASE_TEMPLATE("regression: two boxes touching without overlap are a miss for collide() and intersect()", T, float, double) {
+    // The boxes' separating-axis test added 16 epsilon to every |R| entry, against near-parallel
+    // edges winning by round-off, and so to every face axis's overlap too: boxes sharing a face
+    // overlapped by 5e-15 m in double and 2.9e-6 m in float, a hit.
+    const Shape<T> big = Box<T>(T(1), T(1), T(1)), small = Box<T>(T(0.5), T(0.5), T(0.5));
+    for (const Vec3<T>& offset : {Vec3<T>{T(0.3), T(1.5), T(0.2)}, Vec3<T>{T(1.5), T(0.25), T(-0.5)},
+                                  Vec3<T>{T(-0.75), T(0.5), T(-1.5)}, Vec3<T>{T(1.5), T(1.5), T(0)}}) {
+        CAPTURE(offset);
+        CHECK_FALSE(collide(big, at(T(0), T(0), T(0)), small, at(offset.x, offset.y, offset.z)).hit);
+        CHECK_FALSE(intersect(big, at(T(0), T(0), T(0)), small, at(offset.x, offset.y, offset.z)));
+        CHECK_FALSE(collide(small, at(offset.x, offset.y, offset.z), big, at(T(0), T(0), T(0))).hit);
+        // A hundredth of a millimetre closer, they overlap by that much.
+        const Vec3<T> closer = offset * (T(1) - T(1e-5) / length(offset));
+        const Penetration<T> p = collide(big, at(T(0), T(0), T(0)), small, at(closer.x, closer.y, closer.z));
+        CHECK(p.hit);
+        CHECK(intersect(big, at(T(0), T(0), T(0)), small, at(closer.x, closer.y, closer.z)));
+    }
 }
 
 TEST_CASE_TEMPLATE("flat contact with a zero-thickness-like plate and huge against tiny", T, float, double) {

@@ -89,6 +89,33 @@ TEST_CASE_TEMPLATE("rays hit every shape where the closed form says", T, float, 
     CHECK(near(t->normal, -Vec3<T>::unit_y(), T(1e-5)));
 }
 
+TEST_CASE_TEMPLATE("regression: a ray parallel to a line of a cone's side hits the cone", T, float, double) {
+    // The side's quadratic has no squared term along such a ray (a = 0), and its roots were
+    // skipped: the ray went in through the side and out through the base, which it leaves from
+    // inside, and the whole cone was missed (every one of 360 such rays on a 1 × 2 cone). In the
+    // plane of the axis and the ray, a ray from (u0, y0) along the line (r, -H) of one side
+    // meets the other side's line u = -k (apex - y), k = r / H, after s = (k (y0 - apex) - u0) / 2r
+    // of (r, -H).
+    const Transform<T> at_origin{};
+    for (const auto& [r, height] : {std::pair{T(0.5), T(1)}, std::pair{T(1), T(2)}}) {
+        const Cone<T> cone(r, height);
+        const T apex = cone.apex().y, k = r / height, u0 = T(-1.2) * r, y0 = apex + T(0.9) * r;
+        const T s = (k * (y0 - apex) - u0) / (T(2) * r);
+        for (int degrees = 0; degrees < 360; degrees += 15) {
+            const T phi = radians(static_cast<T>(degrees));
+            const Vec3<T> out{std::cos(phi), T(0), std::sin(phi)};  // the plane's u
+            const Ray<T> ray{out * u0 + Vec3<T>::unit_y() * y0, normalized(out * r - Vec3<T>::unit_y() * height), T(10)};
+            const auto hit = raycast(Shape<T>(cone), at_origin, ray);
+            CAPTURE(r);
+            CAPTURE(degrees);
+            REQUIRE(hit);
+            CHECK(near(hit->distance, s * std::sqrt(r * r + height * height), T(1e-4)));
+            CHECK(near(hit->point, out * (u0 + r * s) + Vec3<T>::unit_y() * (y0 - height * s), T(1e-4)));
+            CHECK(near(hit->normal, normalized(Vec3<T>::unit_y() * r - out * height), T(1e-4)));
+        }
+    }
+}
+
 TEST_CASE_TEMPLATE("rays respect the pose, the length and a start inside", T, float, double) {
     const Shape<T> box = Box<T>(T(0.5), T(0.5), T(0.5));
     const Transform<T> pose{{T(10), T(2), T(0)}, Quat<T>::from_axis_angle(Vec3<T>::unit_y(), ScalarTraits<T>::pi / 4)};

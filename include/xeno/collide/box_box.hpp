@@ -92,11 +92,13 @@ bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& 
     const Vec3<T>& b = md.shape_b().half_extents();
     const Mat3<T>& r = md.rotation_b();
     const Vec3<T> t = md.to_a(Vec3<T>::zero());
-    // |R| plus a little, so that near-parallel edges (cross product ~ 0) cannot win by round-off.
+    // |R| for the face axes; plus a little for the edge axes, so that near-parallel edges (cross
+    // product ~ 0) cannot win by round-off. With the little in the face axes too, every face
+    // overlap grew by 16 ε (Σ b): boxes sharing a face, touching without overlap, were a hit.
     const T eps = T(16) * ScalarTraits<T>::epsilon;
-    Mat3<T> abs_r;
+    Mat3<T> abs_r, abs_r_edge;
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) abs_r[i][j] = std::abs(r[i][j]) + eps;
+        for (int j = 0; j < 3; ++j) abs_r[i][j] = std::abs(r[i][j]), abs_r_edge[i][j] = abs_r[i][j] + eps;
 
     int best_axis = 0;  // 0–2: A's faces, 3–5: B's faces, 6–14: edge pairs
     T best = ScalarTraits<T>::infinity;
@@ -127,8 +129,8 @@ bool box_box_axis(const MinkowskiDifference<Box<T>, Box<T>>& md, Vec3<T>& n, T& 
             const T len = length(axis);
             if (len < T(1e-5)) continue;  // parallel edges: the face axes cover them
             const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            const T ra = a[i1] * abs_r[i2][j] + a[i2] * abs_r[i1][j];
-            const T rb = b[j1] * abs_r[i][j2] + b[j2] * abs_r[i][j1];
+            const T ra = a[i1] * abs_r_edge[i2][j] + a[i2] * abs_r_edge[i1][j];
+            const T rb = b[j1] * abs_r_edge[i][j2] + b[j2] * abs_r_edge[i][j1];
             const T overlap = (ra + rb - std::abs(dot(t, axis))) / len + margin;
             if (overlap < T(0)) return false;
             if (overlap < best_edge_overlap) {
