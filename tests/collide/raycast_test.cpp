@@ -97,7 +97,8 @@ TEST_CASE_TEMPLATE("regression: a ray parallel to a line of a cone's side hits t
     // meets the other side's line u = -k (apex - y), k = r / H, after s = (k (y0 - apex) - u0) / 2r
     // of (r, -H).
     const Transform<T> at_origin{};
-    for (const auto& [r, height] : {std::pair{T(0.5), T(1)}, std::pair{T(1), T(2)}}) {
+    for (const std::pair<T, T>& size : {std::pair{T(0.5), T(1)}, std::pair{T(1), T(2)}}) {
+        const T r = size.first, height = size.second;
         const Cone<T> cone(r, height);
         const T apex = cone.apex().y, k = r / height, u0 = T(-1.2) * r, y0 = apex + T(0.9) * r;
         const T s = (k * (y0 - apex) - u0) / (T(2) * r);

@@ -207,12 +207,12 @@ std::optional<LocalHit<T>> raycast_local(const Shape<T>& shape, const Vec3<T>& o
                 const T c = q.x * q.x + q.z * q.z - k2 * q.y * q.y;
                 const T disc = b * b - a * c;
                 if (disc >= T(0)) {
-                    // Both roots without cancellation, q / a and c / q: a ray along a line of the
-                    // side (a = 0) meets it at the one root c / q = -c / 2b. Skipping |a| <= ε
+                    // Both roots without cancellation, sum / a and c / sum: a ray along a line of
+                    // the side (a = 0) meets it at the one root c / sum = -c / 2b. Skipping |a| <= ε
                     // missed such a ray's way in, and it left through the base from inside: the
                     // cone was missed whole.
-                    const T q = -(b + std::copysign(std::sqrt(disc), b));
-                    const T roots[2] = {a != T(0) ? q / a : -T(1), q != T(0) ? c / q : -T(1)};
+                    const T sum = -(b + std::copysign(std::sqrt(disc), b));
+                    const T roots[2] = {a != T(0) ? sum / a : -T(1), sum != T(0) ? c / sum : -T(1)};
                     for (const T t : roots) {
                         if (!(t >= T(0)) || t > max_t) continue;
                         const Vec3<T> p = o + d * t;
