@@ -22,6 +22,17 @@ BodyId box_with(World<T>& w, const Vec3<T>& position, T mu, T e = T(0)) {
     def.material.restitution = e;
     return w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
 }
+/// A static ramp of friction mu, 1 m thick, 2 half_length long and 10 m wide, tilted by angle
+/// about z so that it falls towards −x; returns its tilt.
+template <class T>
+Quat<T> add_ramp(World<T>& w, T angle, T half_length, T mu = T(0.6)) {
+    BodyDef<T> ramp;
+    ramp.type = BodyType::static_body;
+    ramp.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);
+    ramp.material.friction = mu;
+    w.create_body(Box<T>(half_length, T(0.5), T(5)), ramp);
+    return ramp.orientation;
+}
 }  // namespace
 
 TEST_CASE_TEMPLATE("free fall follows p0 + v0 t + g t^2 / 2 to integrator accuracy", C, XENO_TEST_CONFIGS) {
@@ -118,12 +129,7 @@ TEST_CASE_TEMPLATE("regression: a plate slides along its launch direction and do
         }
     for (const T yaw : {T(0), T(0.5), T(1)}) {  // from rest down a 35° slope falling towards -x
         World<T> w(C::settings());
-        const Quat<T> tilt = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), radians(T(35)));
-        BodyDef<T> ramp;
-        ramp.type = BodyType::static_body;
-        ramp.orientation = tilt;
-        ramp.material.friction = mu;
-        w.create_body(Box<T>(T(40), T(0.5), T(10)), ramp);
+        const Quat<T> tilt = add_ramp(w, radians(T(35)), T(40), mu);
         BodyDef<T> def;
         def.orientation = tilt * Quat<T>::from_axis_angle(Vec3<T>::unit_y(), yaw);
         def.position = rotate(tilt, Vec3<T>{T(20), T(0.5) + plate.y, T(0)});
@@ -187,13 +193,7 @@ TEST_CASE_TEMPLATE("a box on an incline stays below the friction angle and slide
     const T mu = T(0.5);
     for (const T offset : {T(-0.05), T(0.05)}) {
         World<T> w(C::settings());
-        const T angle = std::atan(mu + offset);
-        const Quat<T> tilt = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);
-        BodyDef<T> ramp;
-        ramp.type = BodyType::static_body;
-        ramp.orientation = tilt;
-        ramp.material.friction = mu;
-        w.create_body(Box<T>(T(20), T(0.5), T(5)), ramp);
+        const Quat<T> tilt = add_ramp(w, std::atan(mu + offset), T(20), mu);
         BodyDef<T> def;
         def.orientation = tilt;
         def.position = rotate(tilt, Vec3<T>{T(0), T(1.0), T(0)});
@@ -235,17 +235,6 @@ BodyId launch_roller(World<T>& w, Roller kind, T mu, T x0, T v, T spin) {
     def.angular_velocity = {T(0), T(0), spin};
     def.material.friction = mu;
     return add_roller(w, kind, def, Quat<T>::from_axis_angle(Vec3<T>::unit_x(), radians(T(90))));
-}
-/// A static ramp of friction 0.6, 1 m thick, 2 half_length long and 10 m wide, tilted by angle
-/// about z so that it falls towards −x; returns its tilt.
-template <class T>
-Quat<T> add_ramp(World<T>& w, T angle, T half_length) {
-    BodyDef<T> ramp;
-    ramp.type = BodyType::static_body;
-    ramp.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);
-    ramp.material.friction = T(0.6);
-    w.create_body(Box<T>(half_length, T(0.5), T(5)), ramp);
-    return ramp.orientation;
 }
 double rolling_fraction(Roller kind) {
     const double r = 0.5, half = 0.5, pi = 3.14159265358979323846;

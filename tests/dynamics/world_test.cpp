@@ -122,6 +122,36 @@ TEST_CASE_TEMPLATE("static bodies never move and kinematic bodies push dynamic o
     CHECK(w.body(pusher).mass() == std::numeric_limits<T>::infinity());
 }
 
+namespace {
+/// A 0.5 m box 1 m from the axis of a 3 m platform centred at y = 0.5 (top at 0.6) turning at
+/// omega about y, resting on it and moving with it.
+template <class T>
+BodyDef<T> turntable_rider(T omega) {
+    BodyDef<T> def;
+    def.position = {T(1), T(0.85), T(0)};
+    def.linear_velocity = {T(0), T(0), -omega};
+    def.angular_velocity = {T(0), omega, T(0)};
+    return def;
+}
+/// Steps a rider on a turntable: while omega^2 r < mu g it stays where it was on the platform
+/// (within 2 mm for 10 s); beyond, the platform throws it off within 3 s. Returns whether it held.
+template <class T>
+bool check_ride(World<T>& w, BodyId table, BodyId box, T omega) {
+    if (omega * omega < T(0.6) * T(9.81)) {
+        T drift = T(0);
+        test::simulate(w, T(10), [&](int) {
+            drift = std::max(drift, length(w.body(table).local_point(w.body(box).position()) - Vec3<T>{T(1), T(0.35), T(0)}));
+        });
+        CHECK(drift < T(0.002));
+        return true;
+    }
+    test::simulate(w, T(3));
+    const Vec3<T> p = w.body(box).position();
+    CHECK(std::sqrt(p.x * p.x + p.z * p.z) > T(3));  // thrown off the 3 m platform
+    return false;
+}
+}  // namespace
+
 TEST_CASE_TEMPLATE("regression: a box on a turntable turns with it while omega^2 r < mu g and slides off beyond", C,
                    XENO_TEST_CONFIGS) {
     // The friction row held the box to the platform's velocity at the step's start, so it moved
@@ -129,7 +159,6 @@ TEST_CASE_TEMPLATE("regression: a box on a turntable turns with it while omega^2
     // 1 m, 1 rad/s it drifted 8 mm/s (0.18 m in 10 s), and at 2.2 rad/s it slid off, though
     // friction can hold it up to omega^2 r = mu g (chord_slip, contact_solver.hpp).
     using T = typename C::T;
-    const T mu_g = T(0.6) * T(9.81);
     for (const T omega : {T(1), T(2.2), T(3)})
         for (const bool table_first : {true, false}) {  // the platform as body A of the contact, then as B
             World<T> w(C::settings());
@@ -137,10 +166,7 @@ TEST_CASE_TEMPLATE("regression: a box on a turntable turns with it while omega^2
             k.type = BodyType::kinematic;
             k.position = {T(0), T(0.5), T(0)};  // above the ground, so the box rests on the platform alone
             k.angular_velocity = {T(0), omega, T(0)};
-            BodyDef<T> def;  // at 1 m from the axis, moving with the platform
-            def.position = {T(1), T(0.85), T(0)};
-            def.linear_velocity = {T(0), T(0), -omega};
-            def.angular_velocity = {T(0), omega, T(0)};
+            const BodyDef<T> def = turntable_rider(omega);
             const BodyId first =
                 table_first ? w.create_body(Cylinder<T>(T(3), T(0.1)), k) : w.create_body(Box<T>(T(0.25), T(0.25), T(0.25)), def);
             const BodyId second =
@@ -148,18 +174,7 @@ TEST_CASE_TEMPLATE("regression: a box on a turntable turns with it while omega^2
             const BodyId table = table_first ? first : second, box = table_first ? second : first;
             CAPTURE(omega);
             CAPTURE(table_first);
-            if (omega * omega < mu_g) {
-                T drift = T(0);
-                test::simulate(w, T(10), [&](int) {
-                    drift =
-                        std::max(drift, length(w.body(table).local_point(w.body(box).position()) - Vec3<T>{T(1), T(0.35), T(0)}));
-                });
-                CHECK(drift < T(0.002));
-            } else {
-                test::simulate(w, T(3));
-                const Vec3<T> p = w.body(box).position();
-                CHECK(std::sqrt(p.x * p.x + p.z * p.z) > T(3));  // thrown off the 3 m platform
-            }
+            check_ride(w, table, box, omega);
         }
 }
 
@@ -170,7 +185,6 @@ TEST_CASE_TEMPLATE(
     // merry-go-round built as a dynamic disc on a hinge drifted as the kinematic one did: 8.7 cm
     // in 10 s at 1 m and 1 rad/s, and at 2 rad/s (omega^2 r = 0.68 mu g) it slid off.
     using T = typename C::T;
-    const T mu_g = T(0.6) * T(9.81);
     for (const T omega : {T(1), T(2.2), T(3)})
         for (const bool motor : {true, false}) {
             World<T> w(C::settings());
@@ -184,26 +198,11 @@ TEST_CASE_TEMPLATE(
             hinge.motor_speed = omega;
             hinge.max_motor_torque = T(1e7);
             w.create_joint(hinge);
-            BodyDef<T> def;  // at 1 m from the axis, moving with the disc
-            def.position = {T(1), T(0.85), T(0)};
-            def.linear_velocity = {T(0), T(0), -omega};
-            def.angular_velocity = {T(0), omega, T(0)};
-            const BodyId box = w.create_body(Box<T>(T(0.25), T(0.25), T(0.25)), def);
+            const BodyId box = w.create_body(Box<T>(T(0.25), T(0.25), T(0.25)), turntable_rider(omega));
             CAPTURE(omega);
             CAPTURE(motor);
-            if (omega * omega < mu_g) {
-                T drift = T(0);
-                test::simulate(w, T(10), [&](int) {
-                    drift =
-                        std::max(drift, length(w.body(table).local_point(w.body(box).position()) - Vec3<T>{T(1), T(0.35), T(0)}));
-                });
-                CHECK(drift < T(0.002));
+            if (check_ride(w, table, box, omega))
                 CHECK(near(w.body(table).angular_velocity().y, omega, T(1e-3)));  // nothing slid: no torque between them
-            } else {
-                test::simulate(w, T(3));
-                const Vec3<T> p = w.body(box).position();
-                CHECK(std::sqrt(p.x * p.x + p.z * p.z) > T(3));  // thrown off the 3 m disc
-            }
         }
 }
 
