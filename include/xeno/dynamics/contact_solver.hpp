@@ -106,6 +106,19 @@ bool levers_turn_far(const ContactConstraint<T>& c, const Vec3<T>& w, T step, bo
     return step * length(w) * std::sqrt(reach) > kTurnSpeed;
 }
 
+/// The leading part of chord_slip (below), the chord's pull towards the axis 2 sin²(θ/2) u × (u × r) / h,
+/// without its shortening along the tangent ((sin θ − θ) u × r / h, the next order in θ). A
+/// joint's rows take this one (World::turn_joint_inertias): a gyroscope turns up to 0.4 rad a
+/// substep, where with the shortening its precession was 2.6 % slow (1.0 % without).
+template <class T>
+Vec3<T> chord_pull(const Vec3<T>& w, const Vec3<T>& r, T h) {
+    const T speed = length(w);
+    if (!(speed > T(0))) return {};
+    const Vec3<T> u = w / speed;
+    const T half_sine = std::sin(speed * h / T(2));
+    return cross(u, cross(u, r)) * (T(2) * half_sine * half_sine / h);
+}
+
 /// A body turning at w carries a point at lever r along the chord of its turn, at
 /// (R(w h) − 1) r / h on average over a substep h, not at w × r, the tangent at the substep's
 /// start that the friction row's lever gives. The difference, about h |w|² r / 2 towards the
@@ -129,22 +142,8 @@ template <class T>
 Vec3<T> chord_slip(const Vec3<T>& w, const Vec3<T>& r, T h) {
     const T speed = length(w);
     if (!(speed > T(0))) return {};
-    const Vec3<T> u = w / speed, along = cross(u, r);
-    const T theta = speed * h, half_sine = std::sin(theta / T(2));
-    return (along * (std::sin(theta) - theta) + cross(u, along) * (T(2) * half_sine * half_sine)) / h;
-}
-
-/// The leading part of chord_slip, the chord's pull towards the axis 2 sin²(θ/2) u × (u × r) / h,
-/// without its shortening along the tangent ((sin θ − θ) u × r / h, the next order in θ). A
-/// joint's rows take this one (World::turn_joint_inertias): a gyroscope turns up to 0.4 rad a
-/// substep, where with the shortening its precession was 2.6 % slow (1.0 % without).
-template <class T>
-Vec3<T> chord_pull(const Vec3<T>& w, const Vec3<T>& r, T h) {
-    const T speed = length(w);
-    if (!(speed > T(0))) return {};
-    const Vec3<T> u = w / speed;
-    const T half_sine = std::sin(speed * h / T(2));
-    return cross(u, cross(u, r)) * (T(2) * half_sine * half_sine / h);
+    const T theta = speed * h;
+    return cross(w / speed, r) * ((std::sin(theta) - theta) / h) + chord_pull(w, r, h);
 }
 
 /// m/s: the chord slip (chord_slip) below which a side's levers stay fixed and its row takes no

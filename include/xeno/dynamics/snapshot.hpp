@@ -68,9 +68,7 @@ public:
     }
     template <class V>
     std::vector<V> get_vector() {
-        const std::uint64_t n = get<std::uint64_t>();
-        if (n > (bytes_.size() - offset_) / (sizeof(V) > 0 ? sizeof(V) : 1))
-            report_invalid("restore_snapshot", "a length runs past the end of the buffer; length", static_cast<double>(n));
+        const std::uint64_t n = get_count(sizeof(V), "a length runs past the end of the buffer; length");
         std::vector<V> out;
         out.reserve(static_cast<std::size_t>(n));
         for (std::uint64_t i = 0; i < n; ++i) out.push_back(get<V>());

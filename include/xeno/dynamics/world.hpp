@@ -2608,12 +2608,12 @@ void World<T>::turn_joint_inertias(T h) {
         const Mat3<T> r = to_matrix(solver_bodies_[k].dq);
         return r * solver_masses_[k].inv_inertia * transpose(r);
     };
-    const auto slip = [&](std::uint32_t k, const Vec3<T>& r0) {
+    const auto pull = [&](std::uint32_t k, const Vec3<T>& r0) {
         const detail::SolverBody<T>& s = solver_bodies_[k];
         return k == 0 ? Vec3<T>{} : detail::chord_pull(s.w, rotate(s.dq, r0), h);
     };
     for (detail::JointConstraint<T>& c : joint_rows_) {
-        c.slip = slip(c.b, c.r_b0) - slip(c.a, c.r_a0);
+        c.pull = pull(c.b, c.r_b0) - pull(c.a, c.r_a0);
         if (c.a != 0 && integration_[c.a].gyroscopic) c.mass_a.inv_inertia = turned(c.a);
         if (c.b != 0 && integration_[c.b].gyroscopic) c.mass_b.inv_inertia = turned(c.b);
     }
