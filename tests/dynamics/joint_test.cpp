@@ -297,3 +297,70 @@ TEST_CASE_TEMPLATE("regression: hinge_angle and slider_translation reject joints
     CHECK_THROWS_AS(w.hinge_angle(slider), InvalidArgument);
     CHECK(w.slider_translation(slider) == T(0));
 }
+
+TEST_CASE_TEMPLATE("regression: a motor switched off lets go: a hinged arm held level swings down, a slider's load falls", C,
+                   XENO_TEST_CONFIGS) {
+    // The motor's accumulated impulse was kept when it was switched off and re-applied by every
+    // substep's warm start: the arm hung level and the load stayed put for ever.
+    using T = typename C::T;
+    World<T> w(C::settings());
+    const BodyId pivot = anchor_body(w, Vec3<T>{T(0), T(3), T(0)});
+    BodyDef<T> d;
+    d.position = {T(1), T(3), T(0)};  // a 2 m arm from the pivot along +x
+    const BodyId arm = w.create_body(Box<T>(T(1), T(0.05), T(0.05)), d);
+    JointDef<T> hinge = JointDef<T>::hinge(pivot, arm, Vec3<T>{T(0), T(3), T(0)}, Vec3<T>::unit_z());
+    hinge.enable_motor = true;
+    hinge.motor_speed = T(0);
+    hinge.max_motor_torque = T(5000);  // 25× the arm's m g d = 20 kg · 9.81 · 1 m
+    const JointId held = w.create_joint(hinge);
+    const BodyId rail = anchor_body(w, Vec3<T>{T(5), T(3), T(0)});
+    d.position = {T(5), T(3), T(0)};
+    const BodyId load = w.create_body(Box<T>(T(0.2), T(0.2), T(0.2)), d);
+    JointDef<T> slider = JointDef<T>::prismatic(rail, load, Vec3<T>{T(5), T(3), T(0)}, Vec3<T>::unit_y());
+    slider.enable_motor = true;
+    slider.motor_speed = T(0);
+    slider.max_motor_force = T(5000);
+    const JointId lift = w.create_joint(slider);
+    const auto tip_y = [&] { return w.body(arm).world_point({T(1), T(0), T(0)}).y; };
+    test::simulate(w, T(1));
+    REQUIRE(near(tip_y(), T(3), T(0.01)));
+    REQUIRE(near(w.body(load).position().y, T(3), T(0.01)));
+    w.set_joint_motor(held, false, T(0), T(0));
+    w.set_joint_motor(lift, false, T(0), T(0));
+    CHECK(std::abs(w.joint_reaction(held).torque.z) < T(1));  // nothing left of the motor's 196 N·m
+    // Released from level at rest, the arm swings down through the vertical (tip 2 m below the
+    // pivot) to level on the other side (energy) well within a second: I = m (2 m)² / 3,
+    // a quarter period from level is about 0.6 s. The load falls ½ g t², 1.226 m in 0.5 s.
+    T lowest = tip_y();
+    const T y0 = w.body(load).position().y;
+    test::simulate(w, T(0.5), [&](int) { lowest = std::min(lowest, tip_y()); });
+    CHECK(near(y0 - w.body(load).position().y, T(0.5) * T(9.81) * T(0.25), T(0.02)));
+    test::simulate(w, T(0.5), [&](int) { lowest = std::min(lowest, tip_y()); });
+    CHECK(lowest < T(1.05));  // through the vertical: the tip 2 m below the pivot at y = 3
+}
+
+TEST_CASE_TEMPLATE("regression: a motor slower than the sleep speeds keeps turning: 0.02 rad/s for 20 s is 0.4 rad", T, float,
+                   double) {
+    // Its island fell asleep after sleep_time, the motor's 0.02 rad/s being under the sleep
+    // speeds: the wheel stopped at 0.01 rad. A stalled motor (here: at a limit) still sleeps.
+    World<T> w;  // default settings: sleeping on
+    const BodyId axle = anchor_body(w, Vec3<T>{T(0), T(3), T(0)});
+    BodyDef<T> d;
+    d.position = {T(0), T(3), T(0)};
+    d.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_x(), ScalarTraits<T>::pi / 2);  // cylinder axis along z
+    const BodyId wheel = w.create_body(Cylinder<T>(T(0.5), T(0.1)), d);
+    JointDef<T> motor = JointDef<T>::hinge(axle, wheel, Vec3<T>{T(0), T(3), T(0)}, Vec3<T>::unit_z());
+    motor.enable_motor = true;
+    motor.motor_speed = T(0.02);
+    motor.max_motor_torque = T(100);
+    motor.enable_limit = true;
+    motor.lower_angle = T(-1);
+    motor.upper_angle = T(0.5);
+    const JointId id = w.create_joint(motor);
+    test::simulate(w, T(20));
+    CHECK(near(w.hinge_angle(id), T(0.4), T(0.01)));
+    CHECK(w.body(wheel).awake());
+    test::simulate(w, T(8));  // at the limit by 25 s, stalled there
+    CHECK(near(w.hinge_angle(id), T(0.5), T(0.01)));
+    CHECK(!w.body(wheel).awake());
+}

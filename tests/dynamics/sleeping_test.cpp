@@ -394,3 +394,58 @@ TEST_CASE_TEMPLATE("regression: in zero gravity a ball struck by a light one dri
     CHECK(test::near(momentum, T(2), T(1e-3)));
     CHECK_FALSE(w.body(idle).awake());
 }
+
+TEST_CASE_TEMPLATE("regression: sleepers follow a new gravity, less friction, a veto of their support, sleeping turned off", T,
+                   float, double) {
+    // Sleepers are not integrated: a box asleep on the floor ignored set_gravity (up or sideways)
+    // and a filter that vetoed its floor (it hung in the air after its `ended` event), and one
+    // asleep on a 20° ramp ignored a friction lowered below tan 20°.
+    const auto settled = [](World<T>& w, const Quat<T>& tilt, const Vec3<T>& at) {
+        BodyDef<T> d;
+        d.type = BodyType::static_body;
+        d.orientation = tilt;
+        const BodyId floor = w.create_body(Box<T>(T(10), T(0.5), T(10)), d);
+        d.type = BodyType::dynamic;
+        d.position = at;
+        const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+        test::simulate(w, T(2), [](int) {});
+        REQUIRE(!w.body(box).awake());
+        return std::pair{floor, box};
+    };
+    const Vec3<T> on_floor{T(0), T(1), T(0)};
+    {
+        World<T> w;
+        const BodyId box = settled(w, Quat<T>::identity(), on_floor).second;
+        w.set_gravity({T(0), T(9.81), T(0)});
+        test::simulate(w, T(1), [](int) {});
+        CHECK(test::near(w.body(box).position().y, T(1) + T(0.5) * T(9.81), T(0.05)));  // ½ g t² upwards
+    }
+    {
+        World<T> w;
+        const auto [floor, box] = settled(w, Quat<T>::identity(), on_floor);
+        w.set_contact_filter([floor_id = floor](BodyId a, BodyId b) { return !(a == floor_id || b == floor_id); });
+        test::simulate(w, T(1), [](int) {});
+        CHECK(test::near(w.body(box).position().y, T(1) - T(0.5) * T(9.81), T(0.05)));  // through the floor, ½ g t²
+    }
+    {
+        World<T> w;
+        const T angle = T(20) * ScalarTraits<T>::pi / T(180);
+        const Quat<T> tilt = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);
+        const BodyId box = settled(w, tilt, rotate(tilt, on_floor)).second;
+        w.body(box).set_material({T(0.1), T(0)});  // √(0.6 · 0.1) = 0.245 < tan 20° = 0.364
+        const Vec3<T> p0 = w.body(box).position();
+        test::simulate(w, T(1), [](int) {});
+        const T mu = std::sqrt(T(0.06));
+        const T expected = T(0.5) * T(9.81) * (std::sin(angle) - mu * std::cos(angle));  // ½ a t², t = 1 s
+        CHECK(test::near(length(w.body(box).position() - p0), expected, T(0.03) * expected));
+    }
+    {
+        World<T> w;
+        const BodyId box = settled(w, Quat<T>::identity(), on_floor).second;
+        WorldSettings<T> s = w.settings();
+        s.allow_sleeping = false;
+        w.set_settings(s);
+        w.step(s.fixed_time_step);
+        CHECK(w.body(box).awake());
+    }
+}

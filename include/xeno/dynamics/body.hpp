@@ -186,9 +186,11 @@ public:
     void apply_impulse_at(const Vec3<T>& impulse, const Vec3<T>& world_point);
     void apply_linear_impulse(const Vec3<T>& impulse);
     void apply_angular_impulse(const Vec3<T>& impulse);
+    /// Wakes the body: less friction may set a sleeper on a slope sliding.
     void set_material(const Material<T>& m) {
         detail::validate(m, "Body::set_material");
         material_ = m;
+        wake();
     }
     void set_damping(T linear, T angular);
     void set_gravity_scale(T scale);

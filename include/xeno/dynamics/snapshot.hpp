@@ -130,12 +130,13 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 7;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
+constexpr std::uint32_t kSnapshotVersion = 8;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
                                                       // the last substep, prismatic and swing-twist joints; 4: the
                                                       // pose each contact's manifold was made at,
                                                       // WorldSettings::reuse_contacts; 5: static_contact_damping_ratio,
                                                       // first_relax_iterations; 6: each body's rest pose;
-                                                      // 7: each contact's twist lever and its key
+                                                      // 7: each contact's twist lever and its key;
+                                                      // 8: the parts of a pending event
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {

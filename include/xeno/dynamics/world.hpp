@@ -100,6 +100,11 @@ struct ContactEvent {
     int count = 0;                    ///< contact points (0 for ended events)
     std::array<Vec3<T>, 4> points{};  ///< m, world: the middle of each contact point pair
     T impulse{};                      ///< N·s: total normal impulse over the step (0 for sensors)
+    /// The touching parts, as in Contact: a compound's part index, 0 for a convex body. A pair of
+    /// bodies touching through several parts has a contact, and so events, for each part pair
+    /// (as Box2D's events are per shape pair): a dumbbell on the floor begins twice, and when one
+    /// end lifts that end's contact ends while the other's persists.
+    std::uint32_t child_a = 0, child_b = 0;
 };
 
 /// The contacts of one body (World::contacts_of): const Contact<T>& in the order of contacts().
@@ -184,11 +189,17 @@ public:
     ~World();
 
     const WorldSettings<T>& settings() const { return settings_; }
-    /// Replaces the settings (checked, InvalidArgument on bad values).
+    /// Replaces the settings (checked, InvalidArgument on bad values). A new gravity, or sleeping
+    /// turned off, wakes every sleeping body: a sleeper is not integrated, so it would hang on in
+    /// the old gravity (as Body::set_gravity_scale wakes its body).
     void set_settings(const WorldSettings<T>& s) {
         require_outside_filter("World::set_settings");
         detail::validate(s);
+        const bool wake_all = !(s.gravity == settings_.gravity) || (settings_.allow_sleeping && !s.allow_sleeping);
         settings_ = s;
+        if (wake_all)
+            for (Body<T>& b : bodies_)
+                if (b.alive_ && b.type_ == BodyType::dynamic) b.wake();
     }
     void set_gravity(const Vec3<T>& g) {
         WorldSettings<T> s = settings_;
@@ -635,6 +646,7 @@ private:
     void run_sleep_clocks(T dt);
     void keep_moving_islands_awake();
     void keep_drifting_islands_awake();
+    bool motor_turning(const Joint<T>& j) const;
     bool sliding(const Contact<T>& c) const;
     void update_query_tree();
     void rebuild_query_tree();
@@ -676,7 +688,9 @@ private:
     bool seam_ghost(const Contact<T>& contact) const;
     Vec3<T> highest_point(std::uint32_t slot, const Vec3<T>& d, std::uint32_t near) const;
     void end_contact(const Contact<T>& c) {
-        if (c.touching) events_pending_.push_back({ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0)});
+        if (c.touching)
+            events_pending_.push_back(
+                {ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0), c.child_a, c.child_b});
     }
 
     WorldSettings<T> settings_;
@@ -904,6 +918,10 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     query_tree_of(slot).insert(slot, bounds_[slot]);
     refresh_query_tree();
     previous_pose_[slot] = b.transform();
+    // A static or kinematic body placed over sleepers (a trigger spawned over a settled pile):
+    // two inactive bodies are never collided, so without this the overlap was never found. A new
+    // dynamic body is awake and finds them itself.
+    if (def.type != BodyType::dynamic) wake_overlapping(slot);
     return {slot, b.generation_};
 }
 
@@ -1142,6 +1160,8 @@ ContactEvent<T> World<T>::event_of(const Contact<T>& c) const {
     e.b = c.b;
     e.sensor = c.sensor;
     e.normal = c.manifold.normal;
+    e.child_a = c.child_a;
+    e.child_b = c.child_b;
     if (c.touching) {
         const Body<T>& a = bodies_[c.a.index];
         const Body<T>& b = bodies_[c.b.index];
@@ -1203,23 +1223,26 @@ std::size_t World<T>::collect_events() {
 // sorted and merged in, O(n), where sorting the whole list took 1 ms a step on the 5,050-box
 // pyramid whenever a body had been destroyed. An ended event recorded between steps comes before
 // the same pair's event of the step (a slot reused). Only a contact list whose events are not
-// strictly increasing (a mesh pair's several contacts) sorts everything, as before.
+// strictly increasing (a mesh pair's several contacts) sorts everything, stably: std::sort put a
+// reused slot's `began` before the old body's `ended` in any world holding a compound.
 template <class T>
 void World<T>::sort_events(std::size_t recorded) {
     const auto before = [](const ContactEvent<T>& x, const ContactEvent<T>& y) {
-        return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
+        if (x.a.index != y.a.index) return x.a.index < y.a.index;
+        if (x.b.index != y.b.index) return x.b.index < y.b.index;
+        return x.child_a != y.child_a ? x.child_a < y.child_a : x.child_b < y.child_b;
     };
     const auto out_of_order = [&](const ContactEvent<T>& x, const ContactEvent<T>& y) { return !before(x, y); };
     const auto steps_events = events_.begin() + static_cast<std::ptrdiff_t>(recorded);
     if (std::adjacent_find(steps_events, events_.end(), out_of_order) != events_.end()) {
-        std::sort(events_.begin(), events_.end(), before);
+        std::stable_sort(events_.begin(), events_.end(), before);
         return;
     }
     if (recorded == 0) return;
     const bool in_order = std::adjacent_find(events_.begin(), steps_events, out_of_order) == steps_events &&
                           (steps_events == events_.end() || before(*(steps_events - 1), *steps_events));
     if (in_order) return;
-    std::sort(events_.begin(), steps_events, before);
+    std::stable_sort(events_.begin(), steps_events, before);  // in the order they were recorded
     std::vector<ContactEvent<T>>& merged = merged_events_;
     merged.clear();
     std::merge(events_.begin(), steps_events, steps_events, events_.end(), std::back_inserter(merged), before);
@@ -1384,7 +1407,8 @@ bool World<T>::drop_out_of_reach(T dt) {
             if (kept != m) contacts_[kept] = c;
             ++kept;
         } else if (c.was_touching) {
-            events_pending_.push_back({ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0)});
+            events_pending_.push_back(
+                {ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0), c.child_a, c.child_b});
         }
     }
     contacts_.resize(kept);
@@ -1529,7 +1553,14 @@ void World<T>::merge_contacts(T dt) {
             if (had) ++old;
             if (fresh.manifold.count > 0) place(ContactSource::job, job - 1, 1, false);
         }
-        for (; old < work.old_end; ++old) end_contact(contacts_[old]);  // dropped, or parts that no longer exist
+        // A pair the contact filter now vetoes: a sleeper it held wakes, or it hung in the air.
+        const bool vetoed = work.kind == PairKind::dropped;
+        for (; old < work.old_end; ++old) {  // dropped, or parts that no longer exist
+            if (vetoed && contacts_[old].touching)
+                for (const std::uint32_t i : {pairs_[k].a, pairs_[k].b})
+                    if (bodies_[i].type_ == BodyType::dynamic && bodies_[i].alive_) bodies_[i].wake();
+            end_contact(contacts_[old]);
+        }
     }
     if (parallel) copy_placed_runs(placed);
     while (old < contacts_.size()) end_contact(contacts_[old++]);
@@ -2653,7 +2684,11 @@ void World<T>::solve_substep(int sub, T h, detail::SolvePass<T>& pass) {
     });
     joint_stage(JointStage::turn_inertias, h);
     if (!bouncing_rows_.empty()) wide_rows_.take_approach(solver_bodies_, h, tasks_.get());
-    if (settings_.warm_starting) {
+    // Without warm_starting a step starts from zero impulses (prepare), but each later substep
+    // still starts from the one before, as Box2D v3 does: the accumulated impulses are the ones
+    // the rows clamp and the events sum, so left unapplied they clamped the wrong totals (a row
+    // could pull) and a resting box reported (n + 1) / 2 times its weight over n substeps.
+    if (settings_.warm_starting || sub > 0) {
         joint_stage(JointStage::warm_start, h);
         wide_rows_.warm_start(solver_bodies_, tasks_.get());
     }
@@ -2858,7 +2893,26 @@ void World<T>::keep_moving_islands_awake() {
                 island_min[island_root(d)] = T(0);
         }
     }
+    for (const Joint<T>& j : joints_)
+        if (motor_turning(j) && (would_sleep(j.a.index) || would_sleep(j.b.index)))
+            for (const std::uint32_t i : {j.a.index, j.b.index})
+                if (bodies_[i].type_ == BodyType::dynamic) island_min[island_root(i)] = T(0);
     keep_drifting_islands_awake();
+}
+
+/// Whether a joint's motor drives its bodies: enabled, with a speed and a torque (or force), and
+/// moving at half its speed or more. A motor slower than the sleep speeds (a hinge at 0.02 rad/s)
+/// stopped after sleep_time; a stalled motor (held by a limit or a load above its torque) lets
+/// its island sleep.
+template <class T>
+bool World<T>::motor_turning(const Joint<T>& j) const {
+    if (!joint_active(j) || !j.enable_motor || j.motor_speed == T(0) || !(j.max_motor_torque > T(0))) return false;
+    const Body<T>& a = bodies_[j.a.index];
+    const Body<T>& b = bodies_[j.b.index];
+    const Vec3<T> axis = rotate(a.orientation_, j.local_axis_a);
+    const T speed = j.type == JointType::hinge ? dot(b.angular_velocity_ - a.angular_velocity_, axis)
+                                               : dot(b.linear_velocity_ - a.linear_velocity_, axis);
+    return speed * j.motor_speed >= T(0.5) * j.motor_speed * j.motor_speed;
 }
 
 /// An island in free flight, held by no static or kinematic body through a contact or a joint,

@@ -240,6 +240,10 @@ void World<T>::set_sensor(BodyId id, bool sensor) {
     require_outside_filter(where);
     const std::uint32_t slot = checked(id, where);
     Body<T>& b = bodies_[slot];
+    // A touching pair that turns from solid to sensor (or back) ends, and begins again as the
+    // other kind at the next step: an event that only flipped its sensor flag was never a
+    // `began` to a listener waiting for sensor overlaps, nor an `ended` to one counting contacts.
+    if (b.sensor_ != sensor) end_contacts_of(slot);
     b.sensor_ = sensor;
     b.wake();
     wake_contacts_of(slot);

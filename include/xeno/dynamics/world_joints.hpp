@@ -155,6 +155,9 @@ void World<T>::set_joint_motor(JointId id, bool enable, T speed, T max) {
     j.enable_motor = enable;
     j.motor_speed = speed;
     j.max_motor_torque = max;
+    // The motor's warm start: every substep re-applies it, so one left behind by a motor switched
+    // off held a hinged arm level for ever (as set_joint_limits clears the limit's).
+    if (!enable) j.motor_impulse = T(0);
     bodies_[j.a.index].wake();
     bodies_[j.b.index].wake();
 }
