@@ -113,7 +113,11 @@ T patch_twist_lever(const std::array<Vec3<T>, 4>& p, int count) {
         u[i] = dot(p[i] - centre, t1);
         v[i] = dot(p[i] - centre, t2);
     }
-    return patch_mean_radius(u, v, count);
+    // The mean radius lies within the span. Three corners a few ulps apart (a mesh manifold's
+    // points at one place) passed the line test above by round-off and gave −∞, and the step's
+    // solve, overflowed, was discarded every step: the body froze where it was.
+    const T span = std::sqrt(span_sq), lever = patch_mean_radius(u, v, count);
+    return lever >= T(0) && lever <= span ? lever : span / T(4);
 }
 
 /// A 64-bit digest of the corners' bits and count, never 0 (0: no lever computed yet). Equal
