@@ -322,3 +322,22 @@ TEST_CASE_TEMPLATE("regression: far rays land on a cone's surface, and rays from
             }
     }
 }
+
+TEST_CASE_TEMPLATE("regression: a ray nearly along a long pole's axis enters through its side", T, float, double) {
+    // Rays within √ε of the axis (3.4e-4 rad in float, 1.5e-8 in double) were taken as parallel to
+    // it and missed the side of a cylinder or capsule they enter. Exact entry: where the ray's x,
+    // falling from r + gap at the slope, reaches r.
+    const T r = T(0.05), half = T(10), gap = T(0.001);
+    for (const T slope : {T(3e-4), T(2e-4), T(5e-5)}) {
+        CAPTURE(slope);
+        const Vec3<T> d = normalized(Vec3<T>{-slope, T(-1), T(0)});
+        const Ray<T> ray{{r + gap, half + T(0.5), T(0)}, d, T(100)};
+        const T expected = -gap / d.x;  // x(t) = r + gap + d.x t = r
+        for (const Shape<T>& pole : {Shape<T>(Cylinder<T>(r, half)), Shape<T>(Capsule<T>(r, half))}) {
+            const std::optional<RayHit<T>> hit = raycast(pole, Transform<T>{}, ray);
+            REQUIRE(hit.has_value());
+            CHECK(hit->distance == doctest::Approx(expected).epsilon(std::is_same_v<T, float> ? 1e-4 : 1e-10));
+            CHECK(hit->normal.x > T(0.9999));
+        }
+    }
+}

@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 
 using namespace xeno;
@@ -236,5 +237,90 @@ TEST_CASE_TEMPLATE("regression: a listener that restores a snapshot or throws in
         CHECK(w.interpolation_factor() >= T(0));
         CHECK(w.interpolation_factor() < T(6));  // the step taken is not counted again
         CHECK(test::near(w.interpolation_factor(), T(5), T(1e-3)));
+    }
+}
+
+TEST_CASE_TEMPLATE("regression: update() far behind drops the frames beyond its cap even when a listener throws", T, float,
+                   double) {
+    // The frames beyond max_steps_per_update were dropped after the loop, which a throwing
+    // listener never reached: update(1000) left 999.98 s in the accumulator (interpolation factor
+    // 59,994), and the next update(0) ran max_steps_per_update catch-up steps.
+    World<T> w(test::awake_settings<T>());
+    resting_boxes(w, 2);
+    w.set_contact_listener([](World<T>&, const ContactEvent<T>&) { throw std::runtime_error("listener"); });
+    CHECK_THROWS_AS(w.update(T(1000)), std::runtime_error);
+    const T cap = static_cast<T>(w.settings().max_steps_per_update);
+    CHECK(w.interpolation_factor() >= T(0));
+    CHECK(w.interpolation_factor() < cap);  // the first step taken, the rest of the cap still due
+    w.set_contact_listener(nullptr);
+    CHECK(w.update(T(0)) <= w.settings().max_steps_per_update - 1);
+    CHECK(w.interpolation_factor() >= T(0));
+    CHECK(w.interpolation_factor() < T(1));
+}
+
+TEST_CASE_TEMPLATE("regression: copies and assignments made inside the callbacks carry no callback state", T, float, double) {
+    // The flags "inside the filter / listener" were copied with the world: a copy made inside the
+    // filter could never be changed or stepped, a checkpoint taken in the listener and assigned
+    // back could never step again, a world assigned to inside the listener could step from it,
+    // and one assigned to inside the filter was freed under the running step (ASan:
+    // heap-use-after-free in World::active).
+    const T dt = T(1) / T(60);
+    {
+        World<T> w(test::awake_settings<T>());
+        resting_boxes(w, 2);
+        std::optional<World<T>> copy;
+        w.set_contact_filter([&](BodyId, BodyId) {
+            if (!copy) copy.emplace(w);
+            return true;
+        });
+        w.step(dt);
+        REQUIRE(copy.has_value());
+        CHECK_NOTHROW(copy->create_body(Sphere<T>(T(0.5))));
+        CHECK_NOTHROW(copy->step(dt));
+    }
+    {
+        World<T> w(test::awake_settings<T>());
+        resting_boxes(w, 2);
+        std::optional<World<T>> checkpoint;
+        w.set_contact_listener([&](World<T>& world, const ContactEvent<T>&) {
+            if (!checkpoint) checkpoint.emplace(world);
+        });
+        w.step(dt);
+        REQUIRE(checkpoint.has_value());
+        w = *checkpoint;  // back to the checkpoint, outside any callback
+        CHECK_NOTHROW(w.step(dt));
+    }
+    {
+        World<T> w(test::awake_settings<T>());
+        resting_boxes(w, 2);
+        const World<T> fresh(test::awake_settings<T>());
+        bool rejected = false;
+        w.set_contact_listener([&](World<T>& world, const ContactEvent<T>&) {
+            world = fresh;  // allowed: the listener may restart the level
+            try {
+                world.step(dt);
+            } catch (const InvalidArgument&) {
+                rejected = true;
+            }
+        });
+        w.step(dt);
+        CHECK(rejected);  // still inside the listener after the assignment
+    }
+    {
+        World<T> w(test::awake_settings<T>());
+        resting_boxes(w, 2);
+        const World<T> other(test::awake_settings<T>());
+        int rejected = 0;
+        w.set_contact_filter([&](BodyId, BodyId) {
+            try {
+                w = other;
+            } catch (const InvalidArgument&) {
+                ++rejected;
+            }
+            return true;
+        });
+        w.step(dt);
+        CHECK(rejected > 0);
+        CHECK(w.body_count() == 3);  // the ground and the two boxes, untouched
     }
 }

@@ -483,3 +483,26 @@ TEST_CASE_TEMPLATE("a snapshot keeps a disabled body and a changed density, the 
     CHECK(save_snapshot(copy) == save_snapshot(w));
     for (const BodyId id : copy.query_point(Vec3<T>{T(0), T(0.5), T(0)})) CHECK(id != a);  // the disabled box is not found
 }
+
+TEST_CASE_TEMPLATE("regression: set_shape keeping the mass takes the new shape's inertia, and the body rests on the floor", C,
+                   XENO_TEST_CONFIGS) {
+    // MassUpdate::keep kept the inertia too: a 5 cm ball turned into a 10 m box kept the ball's
+    // inertia, which left the solver's rows almost no effective mass, and the box fell through
+    // the floor (y = −0.08 where it should rest at 5).
+    using T = typename C::T;
+    World<T> w(C::settings());
+    BodyDef<T> g;
+    g.type = BodyType::static_body;
+    g.position = {T(0), T(-0.5), T(0)};
+    w.create_body(Box<T>(T(40), T(0.5), T(40)), g);
+    BodyDef<T> d;
+    d.position = {T(0), T(5.5), T(0)};
+    const BodyId body = w.create_body(Sphere<T>(T(0.05)), d);
+    const T mass = w.body(body).mass();
+    w.set_shape(body, Box<T>(T(5), T(5), T(5)), MassUpdate::keep);
+    CHECK(w.body(body).mass() == doctest::Approx(mass));
+    const T expected = mass * T(50) / T(3);  // m (a² + b²) / 3 about each axis, half extents 5 m
+    CHECK(w.body(body).local_inertia()[0].x == doctest::Approx(expected).epsilon(1e-5));
+    test::simulate(w, T(2));
+    CHECK(std::abs(w.body(body).position().y - T(5)) < T(0.01));
+}

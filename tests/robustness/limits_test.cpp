@@ -493,3 +493,27 @@ TEST_CASE_TEMPLATE("a fast body swept at its speed cap past a static box leaves 
         CHECK(non_finite_bodies(w) == 0);
     }
 }
+
+TEST_CASE_TEMPLATE("regression: an inertia stiff about one axis is positive definite, one with a negative minor is not", T, float,
+                   double) {
+    // The minors were taken of the inertia divided by its largest diagonal entry: diag(167, 1e25,
+    // 167) in float (1e170 in double), a body locked against spin about y, had them underflow to 0
+    // and was rejected as not positive definite.
+    const T stiff = std::is_same_v<T, float> ? T(1e25) : T(1e170);
+    MassProperties<T> m;
+    m.mass = T(1000);
+    m.inertia = Mat3<T>::diagonal({T(166.7), stiff, T(166.7)});
+    World<T> w;
+    Body<T>& b = w.body(w.create_body(Box<T>(T(0.5), T(0.5), T(0.5))));
+    CHECK_NOTHROW(b.set_mass_properties(m));
+    CHECK(b.local_inertia()[1].y == stiff);
+    // It spins about x as its inertia there says, and hardly about y: I⁻¹ from rows scaled first.
+    CHECK(b.inverse_inertia_local()[0].x == doctest::Approx(T(1) / T(166.7)));
+    CHECK(b.inverse_inertia_local()[1].y == doctest::Approx(T(1) / stiff));
+    // Still rejected: an off-diagonal term that makes a 2×2 minor negative (I_xy² > I_xx I_yy),
+    // whatever the scale, and a negative diagonal entry.
+    m.inertia = Mat3<T>{{T(1), T(2), T(0)}, {T(2), T(1), T(0)}, {T(0), T(0), T(1)}} * T(1e-3);
+    CHECK_THROWS_AS(b.set_mass_properties(m), InvalidArgument);
+    m.inertia = Mat3<T>::diagonal({T(1), T(-1), T(1)});
+    CHECK_THROWS_AS(b.set_mass_properties(m), InvalidArgument);
+}

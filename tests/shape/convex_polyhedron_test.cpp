@@ -192,3 +192,22 @@ TEST_CASE_TEMPLATE("regression: two shells (a doubled surface, a nested copy) ar
         CHECK(m.find("(got 4)") != std::string::npos);
     }
 }
+
+TEST_CASE_TEMPLATE("regression: a slim plank is a solid, a slab or a needle within the tolerance is not", T, float, double) {
+    // The volume check asked for V > 64 ε d × d² (a plate's area), which a square beam passes
+    // only if its width is 1/40 of its length in float: a 2 m × 5 cm × 5 cm plank was "zero
+    // volume" and the hull of its corners "collinear or coplanar". The check is now on the mean
+    // thickness 2 V / area, against the same 64 ε d as a face's width.
+    const Vec3<T> half{T(1), T(0.025), T(0.025)};
+    const ConvexPolyhedron<T> plank = make_box_polyhedron(half);
+    CHECK(plank.volume() == doctest::Approx(T(0.005)).epsilon(1e-5));
+    std::vector<Vec3<T>> corners;
+    for (int k = 0; k < 8; ++k) corners.push_back({k & 1 ? half.x : -half.x, k & 2 ? half.y : -half.y, k & 4 ? half.z : -half.z});
+    CHECK(make_convex_hull(corners).polyhedron.volume() == doctest::Approx(T(0.005)).epsilon(1e-5));
+    // 64 ε d is 1.3 mm at d = 2 m in float (1.3e-7 m in double): thinner than half of it is flat.
+    const T flat = std::is_same_v<T, float> ? T(2e-4) : T(2e-11);
+    CHECK_THROWS_AS(make_box_polyhedron(Vec3<T>{T(1), T(1), flat}), InvalidArgument);  // a slab
+    CHECK_THROWS_AS(make_box_polyhedron(Vec3<T>{T(1), flat, flat}), InvalidArgument);  // a needle
+    for (Vec3<T>& c : corners) c.z = c.z > T(0) ? flat : -flat;
+    CHECK_THROWS_AS(make_convex_hull(corners), InvalidArgument);
+}

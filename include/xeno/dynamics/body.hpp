@@ -33,7 +33,8 @@ struct SnapshotAccess;
 
 enum class BodyType : std::uint8_t { static_body, kinematic, dynamic };
 
-/// What World::set_shape does with a dynamic body's mass: density × the new shape's, or as it was.
+/// What World::set_shape does with a dynamic body's mass: density × the new shape's, or the mass
+/// as it was with the new shape's inertia scaled to it (the density stays, for a later recompute).
 enum class MassUpdate : std::uint8_t { recompute, keep };
 
 /// A handle to a body: slot index and generation. Default-constructed handles are invalid.
@@ -144,7 +145,8 @@ public:
     /// inverse per call, cheaper than storing it in every body (docs/benchmarks.md, memory).
     Mat3<T> inverse_inertia_local() const {
         if (inverse_mass_ == T(0)) return Mat3<T>::zero();
-        return try_inverse(inertia_local_).value_or(Mat3<T>::zero());
+        if (const std::optional<Mat3<T>> inv = try_inverse(inertia_local_)) return *inv;
+        return try_inverse_by_rows(inertia_local_).value_or(Mat3<T>::zero());  // stiff about one axis
     }
     const Material<T>& material() const { return material_; }
     T linear_damping() const { return linear_damping_; }
@@ -434,18 +436,25 @@ void check_mass_properties(const MassProperties<T>& m, T radius, const char* whe
                        static_cast<double>(length(m.center)));
     // Symmetric (up to round-off, as R I Rᵀ leaves it) and positive definite by Sylvester's
     // criterion: the leading principal minors are positive. The minors are taken of the inertia
-    // divided by its largest diagonal entry, so tiny bodies (a 0.1 mm float sphere, I ~ 1e-17,
-    // det ~ 1e-51) are not rejected for an underflowing determinant.
+    // scaled by its diagonal on both sides, n_ij = I_ij / √(I_ii I_jj) (a unit diagonal), so
+    // neither tiny bodies (a 0.1 mm float sphere, I ~ 1e-17, det ~ 1e-51) nor a body stiff about
+    // one axis (diag(167, 1e25, 167) in float, whose minors divided by the largest entry
+    // underflowed) are rejected for a determinant that rounds to 0.
     const Mat3<T>& i = m.inertia;
-    const T largest = std::max(i[0].x, std::max(i[1].y, i[2].z));
-    bool ok = is_finite(i) && largest > T(0) && std::isfinite(largest);
+    bool ok = is_finite(i) && i[0].x > T(0) && i[1].y > T(0) && i[2].z > T(0);
     if (ok) {
-        const Mat3<T> n{i[0] / largest, i[1] / largest, i[2] / largest};
+        const Vec3<T> root{std::sqrt(i[0].x), std::sqrt(i[1].y), std::sqrt(i[2].z)};
+        const auto row = [&](int r) {
+            const T scale = root[r];
+            return Vec3<T>{i[r].x / scale / root.x, i[r].y / scale / root.y, i[r].z / scale / root.z};
+        };
+        const Mat3<T> n{row(0), row(1), row(2)};
         const T asymmetry = std::max(std::abs(n[0].y - n[1].x), std::max(std::abs(n[0].z - n[2].x), std::abs(n[1].z - n[2].y)));
         const T minor2 = n[0].x * n[1].y - n[0].y * n[1].x;
-        const std::optional<Mat3<T>> inv = try_inverse(i);
-        ok = asymmetry <= ScalarTraits<T>::relative_tolerance * std::abs(trace(n)) && n[0].x > T(0) && minor2 > T(0) &&
-             determinant(n) > T(0) && inv && is_finite(*inv);
+        std::optional<Mat3<T>> inv = try_inverse(i);
+        if (!inv) inv = try_inverse_by_rows(i);  // as inverse_inertia_local() takes it
+        ok = asymmetry <= ScalarTraits<T>::relative_tolerance * T(3) && minor2 > T(0) && determinant(n) > T(0) && inv &&
+             is_finite(*inv);
     }
     if (!ok)
         report_invalid(where, "inertia must be finite, symmetric and positive definite (with a finite inverse); Ixx",

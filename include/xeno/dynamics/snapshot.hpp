@@ -410,8 +410,7 @@ struct SnapshotAccess {
         out.listener_ = std::move(world.listener_);
         out.filter_ = std::move(world.filter_);
         out.tasks_ = std::move(world.tasks_);
-        out.in_listener_ = world.in_listener_;  // restored from inside the listener: still inside it
-        world = std::move(out);
+        world = std::move(out);  // the target keeps its callback state: restored from inside the listener, still inside it
     }
 };
 

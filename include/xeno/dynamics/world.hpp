@@ -444,21 +444,21 @@ private:
     };
     /// The door of every mutating call: rejected while the contact filter runs.
     void require_outside_filter(const char* where) const {
-        if (in_filter_)
+        if (callbacks_.in_filter)
             detail::report_invalid(std::string("xeno: ") + where +
                                    ": the world may not be changed from inside the contact filter (change it after step())");
     }
     /// step() and update(): rejected inside the filter and inside the contact listener.
     void require_outside_callbacks(const char* where) const {
         require_outside_filter(where);
-        if (in_listener_)
+        if (callbacks_.in_listener)
             detail::report_invalid(std::string("xeno: ") + where +
                                    ": the world may not be stepped from inside the contact listener (step after it returns)");
     }
     /// The user filter's verdict on a pair (true without a filter), with mutations locked out.
     bool filter_allows(std::uint32_t a, std::uint32_t b) {
         if (!filter_) return true;
-        const FlagScope scope(in_filter_);
+        const FlagScope scope(callbacks_.in_filter);
         return filter_(id_of(a), id_of(b));
     }
     std::uint32_t checked(BodyId id, const char* where) const {
@@ -693,6 +693,28 @@ private:
                 {ContactEventKind::ended, c.a, c.b, c.sensor, c.manifold.normal, 0, {}, T(0), c.child_a, c.child_b});
     }
 
+    /// Which of this world's callbacks is running. That belongs to the running call, not to the
+    /// world's state: a copy starts outside every callback and an assigned-to world keeps its own
+    /// (a copy made inside the filter was locked for good; a world assigned to inside the listener
+    /// could step from it). Assigning to a world from inside its contact filter is rejected
+    /// before any member changes, the step walking its tables (it read freed memory): the first
+    /// member, so its assignment runs first. (From a move assignment, noexcept, the report ends
+    /// the program.)
+    struct CallbackState {
+        bool in_filter = false;    ///< the contact filter is running: mutating calls are rejected
+        bool in_listener = false;  ///< the contact listener is running: step() and update() are rejected
+        CallbackState() = default;
+        CallbackState(const CallbackState&) noexcept {}
+        CallbackState& operator=(const CallbackState&) {
+            if (in_filter)
+                detail::report_invalid(
+                    "xeno: World::operator=: the world may not be changed from inside the contact filter (change it after "
+                    "step())");
+            return *this;
+        }
+        ~CallbackState() = default;
+    };
+    CallbackState callbacks_;
     WorldSettings<T> settings_;
     std::deque<Body<T>> bodies_;  ///< a deque: references stay valid as it grows
     std::vector<std::uint32_t> free_slots_;
@@ -771,8 +793,6 @@ private:
     std::vector<detail::SupportRow<T>> support_rows_;
     std::vector<T> support_share_;
     detail::WorldTasks tasks_;  ///< where a step's parallel stages run (set_workers, set_task_system)
-    bool in_filter_ = false;    ///< the contact filter is running: mutating calls are rejected
-    bool in_listener_ = false;  ///< the contact listener is running: step() and update() are rejected
 };
 
 template <class T>
@@ -1022,6 +1042,12 @@ int World<T>::update(T seconds) {
     require_outside_callbacks("World::update");
     detail::require_non_negative(seconds, "World::update", "seconds");
     accumulator_ += seconds;
+    // Too far behind, the frames beyond max_steps_per_update are dropped first: trimmed after the
+    // loop, a listener that threw left the whole frame (update(1000) left an interpolation factor
+    // of 59,994, and the next update(0) ran 8 steps nobody asked for).
+    const T most = settings_.fixed_time_step * static_cast<T>(settings_.max_steps_per_update);
+    if (accumulator_ >= most + settings_.fixed_time_step)
+        accumulator_ = most + std::fmod(accumulator_, settings_.fixed_time_step);
     int steps = 0;
     // The step's time leaves the accumulator before the step: a listener that restores a
     // snapshot replaces the accumulator (subtracting afterwards left it at -dt, and the world's
@@ -1261,7 +1287,7 @@ void World<T>::report_events() {
         delivering.swap(delivered_events_);
         delivering = events_;
         {
-            const FlagScope scope(in_listener_);
+            const FlagScope scope(callbacks_.in_listener);
             for (const ContactEvent<T>& e : delivering) {
                 if (!listener_) break;  // cleared from inside
                 const std::shared_ptr<const Listener> current = listener_;

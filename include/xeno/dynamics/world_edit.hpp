@@ -152,12 +152,16 @@ void World<T>::set_shape_impl(std::uint32_t slot, std::shared_ptr<const Shape<T>
                               std::shared_ptr<const Compound<T>> compound, MassUpdate mass, const char* where) {
     Body<T>& b = bodies_[slot];
     MassProperties<T> m{};
-    const bool recompute = b.type_ == BodyType::dynamic && mass == MassUpdate::recompute;
-    if (recompute) m = dynamic_mass(shape.get(), compound.get(), b.density_, T(0), where);
+    // Kept, the mass stays and the inertia is the new shape's at that mass: the old inertia kept
+    // with a new shape (a 5 cm ball's on a 10 m box) gave the solver's rows almost no effective
+    // mass, and the box fell through the floor.
+    const bool dynamic = b.type_ == BodyType::dynamic;
+    const T kept = mass == MassUpdate::keep ? T(1) / b.inverse_mass_ : T(0);
+    if (dynamic) m = dynamic_mass(shape.get(), compound.get(), b.density_, kept, where);
     wake_overlapping(slot);
     end_contacts_of(slot);
     b.set_geometry(std::move(shape), std::move(compound), nullptr);  // a mesh body given a convex shape becomes a convex body
-    if (recompute) b.set_mass_properties(m);
+    if (dynamic) b.set_mass_properties(m);
     b.wake();
     place_in_broad_phase(slot);
     wake_overlapping(slot);

@@ -118,6 +118,27 @@ std::optional<Mat3<T>> try_inverse(const Mat3<T>& m) {
     return Mat3<T>::from_columns(c0, c1, c2) * (T(1) / (det * largest));
 }
 
+/// The inverse of m with each row scaled by its own largest component first, for a matrix whose
+/// rows differ by many orders of magnitude (an inertia stiff about one axis, diag(167, 1e25, 167)
+/// in float), whose determinant scaled by the largest entry underflows in try_inverse. nullopt
+/// when singular after the scaling.
+template <class T>
+std::optional<Mat3<T>> try_inverse_by_rows(const Mat3<T>& m) {
+    T s[3];
+    Mat3<T> n;
+    for (int i = 0; i < 3; ++i) {
+        s[i] = max_component(abs(m[i]));
+        if (!(s[i] > T(0)) || !std::isfinite(s[i])) return std::nullopt;
+        n[i] = m[i] / s[i];
+    }
+    const Vec3<T> c0 = cross(n[1], n[2]), c1 = cross(n[2], n[0]), c2 = cross(n[0], n[1]);
+    const T det = dot(n[0], c0);
+    const T scale = length(n[0]) * length(n[1]) * length(n[2]);
+    if (!(std::abs(det) > ScalarTraits<T>::epsilon * scale) || !std::isfinite(det)) return std::nullopt;
+    // m = S n, so m⁻¹ = n⁻¹ S⁻¹: column j of n⁻¹ (c_j / det) divided by s_j.
+    return Mat3<T>::from_columns(c0 / (det * s[0]), c1 / (det * s[1]), c2 / (det * s[2]));
+}
+
 /// u vᵀ.
 template <class T>
 constexpr Mat3<T> outer(const Vec3<T>& u, const Vec3<T>& v) {

@@ -717,7 +717,6 @@ HullCheck<W> check_hull_faces(const std::vector<Vec3<W>>& v, const std::vector<s
     reference /= static_cast<W>(used);
     const W scale = length(bounds.max - bounds.min);
     const W tolerance = W(64) * W(ScalarTraits<T>::geometric_tolerance) * scale;  // as ConvexPolyhedron
-    out.min_volume = W(1.05) * tolerance * scale * scale;
     out.bad_face.assign(faces.size(), false);
     out.area.assign(faces.size(), W(0));
     for (std::size_t f = 0; f < faces.size(); ++f) {
@@ -741,6 +740,10 @@ HullCheck<W> check_hull_faces(const std::vector<Vec3<W>>& v, const std::vector<s
         out.bad_face[f] = bad;
         if (bad) out.all_faces_good = false;
     }
+    // As ConvexPolyhedron: a mean thickness (2 V / area) above the tolerance.
+    W area = W(0);
+    for (const W a : out.area) area += a;
+    out.min_volume = W(1.05) * tolerance * std::max(area / W(2), tolerance * scale);
     return out;
 }
 

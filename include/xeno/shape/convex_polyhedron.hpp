@@ -282,6 +282,7 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices, const std::
 
     // Faces: indices, normals (Newell's method: robust for any planar polygon), planarity.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> directed_edges;
+    T area = T(0);  // m², the surface's
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const std::vector<std::uint32_t>& face = faces[f];
         const std::string face_name = "face " + std::to_string(f);
@@ -312,6 +313,7 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices, const std::
             directed_edges.emplace_back(face[k], face[(k + 1) % face.size()]);
         }
         centre /= static_cast<T>(face.size());
+        area += length(newell) / T(2);
         // A face is degenerate when it is thinner than the tolerance (twice its area over its
         // longest edge): small but well-shaped faces are fine, slivers are not.
         const std::optional<Vec3<T>> normal = try_normalized(newell);
@@ -399,7 +401,10 @@ ConvexPolyhedron<T>::ConvexPolyhedron(std::vector<Vec3<T>> vertices, const std::
         }
 
     unit_mass_ = detail::polyhedron_unit_density(vertices_, face_indices_, faces_);
-    if (!(unit_mass_.mass > tolerance * scale * scale))
+    // Zero volume: a mean thickness (2 V / area) within the tolerance, as a face's width. V above
+    // tolerance × scale² (a plate's area) rejected every solid slimmer than 1:40 in float: a
+    // 2 m × 5 cm × 5 cm plank was "zero volume".
+    if (!(unit_mass_.mass > tolerance * std::max(area / T(2), tolerance * scale)))
         detail::report_invalid(where, "has zero volume; volume (m^3)", static_cast<double>(unit_mass_.mass));
 
     // The bounding box's shape scaled about the centroid until a corner meets a face plane,
