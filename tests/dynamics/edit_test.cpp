@@ -491,10 +491,7 @@ TEST_CASE_TEMPLATE("regression: set_shape keeping the mass takes the new shape's
     // the floor (y = −0.08 where it should rest at 5).
     using T = typename C::T;
     World<T> w(C::settings());
-    BodyDef<T> g;
-    g.type = BodyType::static_body;
-    g.position = {T(0), T(-0.5), T(0)};
-    w.create_body(Box<T>(T(40), T(0.5), T(40)), g);
+    add_ground(w);  // 40 m wide, top at y = 0: room for the 10 m box
     BodyDef<T> d;
     d.position = {T(0), T(5.5), T(0)};
     const BodyId body = w.create_body(Sphere<T>(T(0.05)), d);

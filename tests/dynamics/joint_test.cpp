@@ -20,6 +20,22 @@ BodyId anchor_body(World<T>& w, const Vec3<T>& at) {
     return w.create_body(Box<T>(T(0.05), T(0.05), T(0.05)), d);
 }
 
+/// A wheel (a cylinder of radius 0.5 m, its axis along z) on a hinge to a static axle at
+/// (0, 3, 0), its motor driving it at `speed` rad/s with at most `torque` N·m.
+template <class T>
+std::pair<BodyId, JointDef<T>> motor_wheel(World<T>& w, T speed, T torque) {
+    const BodyId axle = anchor_body(w, Vec3<T>{T(0), T(3), T(0)});
+    BodyDef<T> d;
+    d.position = {T(0), T(3), T(0)};
+    d.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_x(), ScalarTraits<T>::pi / 2);  // cylinder axis along z
+    const BodyId wheel = w.create_body(Cylinder<T>(T(0.5), T(0.1)), d);
+    JointDef<T> motor = JointDef<T>::hinge(axle, wheel, Vec3<T>{T(0), T(3), T(0)}, Vec3<T>::unit_z());
+    motor.enable_motor = true;
+    motor.motor_speed = speed;
+    motor.max_motor_torque = torque;
+    return {wheel, motor};
+}
+
 /// The most any of the ragdoll's swing-twist joints (the first 9 joints) has its swing past its
 /// cone (rad), measured independently of the solver: the angle between the two twist axes.
 template <class T>
@@ -167,15 +183,7 @@ TEST_CASE_TEMPLATE("a hinged door stops at its limit", C, XENO_TEST_CONFIGS) {
 TEST_CASE_TEMPLATE("a hinge motor spins a wheel at its target speed and a weld holds two boxes as one", C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
     World<T> w(C::settings());
-    const BodyId axle = anchor_body(w, Vec3<T>{T(0), T(3), T(0)});
-    BodyDef<T> d;
-    d.position = {T(0), T(3), T(0)};
-    d.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_x(), ScalarTraits<T>::pi / 2);  // cylinder axis along z
-    const BodyId wheel = w.create_body(Cylinder<T>(T(0.5), T(0.1)), d);
-    JointDef<T> motor = JointDef<T>::hinge(axle, wheel, Vec3<T>{T(0), T(3), T(0)}, Vec3<T>::unit_z());
-    motor.enable_motor = true;
-    motor.motor_speed = T(3);
-    motor.max_motor_torque = T(500);
+    const auto [wheel, motor] = motor_wheel(w, T(3), T(500));
     const JointId id = w.create_joint(motor);
     test::simulate(w, T(2));
     CHECK(near(w.body(wheel).angular_velocity().z, T(3), T(1e-3)));
@@ -344,15 +352,7 @@ TEST_CASE_TEMPLATE("regression: a motor slower than the sleep speeds keeps turni
     // Its island fell asleep after sleep_time, the motor's 0.02 rad/s being under the sleep
     // speeds: the wheel stopped at 0.01 rad. A stalled motor (here: at a limit) still sleeps.
     World<T> w;  // default settings: sleeping on
-    const BodyId axle = anchor_body(w, Vec3<T>{T(0), T(3), T(0)});
-    BodyDef<T> d;
-    d.position = {T(0), T(3), T(0)};
-    d.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_x(), ScalarTraits<T>::pi / 2);  // cylinder axis along z
-    const BodyId wheel = w.create_body(Cylinder<T>(T(0.5), T(0.1)), d);
-    JointDef<T> motor = JointDef<T>::hinge(axle, wheel, Vec3<T>{T(0), T(3), T(0)}, Vec3<T>::unit_z());
-    motor.enable_motor = true;
-    motor.motor_speed = T(0.02);
-    motor.max_motor_torque = T(100);
+    auto [wheel, motor] = motor_wheel(w, T(0.02), T(100));
     motor.enable_limit = true;
     motor.lower_angle = T(-1);
     motor.upper_angle = T(0.5);
