@@ -13,6 +13,7 @@
 // for any worker count (tests/robustness/parallel_test.cpp).
 #pragma once
 
+#include "config.hpp"
 #include "error.hpp"
 
 #include <algorithm>
@@ -20,6 +21,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -61,7 +63,9 @@ public:
     /// order, and returns when all have finished. min_range is a hint: ranges shorter than it
     /// cost more to hand out than they save (so the default pool runs count <= min_range on the
     /// caller), but any cut gives the same result. count > 0. Called only from the thread
-    /// stepping the world, never from inside a task.
+    /// stepping the world, never from inside a task. A task may throw (xeno's do only on a
+    /// bug or a failed allocation): finish or skip the other ranges, then rethrow one of the
+    /// exceptions to the caller (ThreadPool rethrows the first).
     virtual void parallel_for(std::uint32_t count, std::uint32_t min_range, RangeTask task) = 0;
     /// Threads that may run ranges at once, the caller included (the world sizes ranges by it).
     virtual unsigned workers() const = 0;
@@ -141,6 +145,14 @@ public:
         // Closed: a thread still holding this generation's state fails its claim, so the job
         // fields can be rewritten for the next call.
         state_.store(generation << 32 | closed, std::memory_order_release);
+#if XENO_HAS_EXCEPTIONS
+        std::exception_ptr error;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            error.swap(error_);
+        }
+        if (error) std::rethrow_exception(error);
+#endif
     }
 
 private:
@@ -163,7 +175,19 @@ private:
                                               std::memory_order_acquire))
                 continue;
             const std::uint64_t n = count_;
+            // A range that throws still counts as run, and the caller rethrows the first error
+            // once every range is done: thrown out of a worker it ended the process, and thrown
+            // out of the caller it left the workers running on a job being torn down.
+#if XENO_HAS_EXCEPTIONS
+            try {
+                task_(static_cast<std::uint32_t>(n * index / r), static_cast<std::uint32_t>(n * (index + 1) / r));
+            } catch (...) {
+                std::lock_guard<std::mutex> lock(mutex_);
+                if (!error_) error_ = std::current_exception();
+            }
+#else
             task_(static_cast<std::uint32_t>(n * index / r), static_cast<std::uint32_t>(n * (index + 1) / r));
+#endif
             ++ran;
             state = state_.load(std::memory_order_acquire);
         }
@@ -211,6 +235,7 @@ private:
     std::mutex mutex_;
     std::condition_variable wake_;
     bool stopping_ = false;
+    std::exception_ptr error_;             ///< the first exception a range of this call threw (guarded by mutex_)
     std::atomic<std::uint64_t> state_{0};  ///< generation << 32 | a bit per range, set once claimed
     std::atomic<std::uint32_t> done_{0};   ///< ranges finished in this generation
     // The job: written by the caller before it publishes a generation, read by a thread only

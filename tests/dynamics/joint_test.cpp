@@ -8,6 +8,9 @@
 
 #include "scenes/features.hpp"
 
+#include <algorithm>
+#include <random>
+
 using namespace xeno;
 using xeno::test::near;
 
@@ -274,19 +277,37 @@ TEST_CASE_TEMPLATE("a ragdoll falls onto a step and settles with its joints hold
 TEST_CASE_TEMPLATE("joint limits hold as firmly when the contacts are set less damped", T, float, double) {
     // Regression: the limits took the contacts' softness, damping ratio included, so lowering
     // contact_damping_ratio (which docs/solver.md measures for stacks at fewer substeps) let the
-    // limbs land further past their cones. Measured here: 1.9 / 3.6 deg (float, ratio 2 / 3) and
-    // 4.0 / 3.7 deg (double) before; 1.6 / 1.9 and 2.6 / 2.6 deg now that limits keep a ratio of 10.
-    // Over 20 nudged runs at ratio 3 the worst overshoot was 6.9 deg before and 3.7 deg after.
+    // limbs land further past their cones: 1.9 / 3.6 deg (float, ratio 2 / 3) and 4.0 / 3.7 deg
+    // (double) in the unperturbed run before, and 6.9 deg at worst over 20 nudged runs at ratio 3;
+    // limits now keep a ratio of 10. A ragdoll's landing is chaotic, so one run's overshoot is a
+    // sample: this checks 11 runs per ratio (unperturbed, and 10 with every body nudged by up to
+    // 5 cm/s). Measured after the impact rounds of December 7: mean 1.95-2.19 deg, worst 4.62
+    // (the unperturbed run alone, 1.9-4.6 deg, had been under 3.2 before them, with the same
+    // mean and a worst of 5.67 deg over these runs).
     for (const T ratio : {T(2), T(3)}) {
-        WorldSettings<T> s;
-        s.allow_sleeping = false;
-        s.contact_damping_ratio = ratio;
-        World<T> w(s);
-        scenes::ragdoll(w);
-        T worst = T(0);
-        test::simulate(w, T(4), [&](int) { worst = std::max(worst, worst_swing_past_cone(w)); });
+        T sum = T(0), worst = T(0);
+        for (unsigned seed = 0; seed <= 10; ++seed) {
+            WorldSettings<T> s;
+            s.allow_sleeping = false;
+            s.contact_damping_ratio = ratio;
+            World<T> w(s);
+            scenes::ragdoll(w);
+            std::mt19937 random(seed);
+            std::uniform_real_distribution<T> nudge(T(-0.05), T(0.05));
+            if (seed > 0)
+                w.for_each_body([&](BodyId id, const Body<T>& b) {
+                    if (b.type() != BodyType::dynamic) return;
+                    const Vec3<T> dv{nudge(random), nudge(random), nudge(random)};
+                    w.body(id).set_linear_velocity(b.linear_velocity() + dv);
+                });
+            T run = T(0);
+            test::simulate(w, T(4), [&](int) { run = std::max(run, worst_swing_past_cone(w)); });
+            sum += run;
+            worst = std::max(worst, run);
+        }
         CAPTURE(ratio);
-        CHECK(worst < radians(T(3.2)));
+        CHECK(sum / T(11) < radians(T(2.5)));
+        CHECK(worst < radians(T(5)));
     }
 }
 
@@ -345,6 +366,30 @@ TEST_CASE_TEMPLATE("regression: a motor switched off lets go: a hinged arm held 
     CHECK(near(y0 - w.body(load).position().y, T(0.5) * T(9.81) * T(0.25), T(0.02)));
     test::simulate(w, T(0.5), [&](int) { lowest = std::min(lowest, tip_y()); });
     CHECK(lowest < T(1.05));  // through the vertical: the tip 2 m below the pivot at y = 3
+}
+
+TEST_CASE_TEMPLATE("regression: a small torque spins a heavy wheel up at tau / I with sleeping on, and a slider likewise", T,
+                   float, double) {
+    // The motors' islands fell asleep within a second, while still under the sleep speeds on their
+    // way up, and never started again: the wheel read 0 rad/s at 10 s, not 1.02.
+    World<T> w;  // default settings: sleeping on
+    const T torque = T(2), target = T(5);
+    auto [wheel, motor] = motor_wheel(w, target, torque);
+    w.create_joint(motor);
+    const T inertia = T(1) / w.body(wheel).inverse_inertia_world()[2].z;  // about the axle (z)
+    const BodyId ground = anchor_body(w, Vec3<T>{T(0), T(-10), T(0)});
+    BodyDef<T> d;
+    d.position = {T(5), T(-10), T(0)};
+    d.gravity_scale = T(0);
+    const BodyId cart = w.create_body(Box<T>(T(0.4), T(0.4), T(0.4)), d);  // 64 kg, no contact
+    JointDef<T> slider = JointDef<T>::prismatic(ground, cart, Vec3<T>{T(5), T(-10), T(0)}, Vec3<T>::unit_x());
+    slider.enable_motor = true;
+    slider.motor_speed = T(1);
+    slider.max_motor_force = T(2);
+    w.create_joint(slider);
+    test::simulate(w, T(10));
+    CHECK(near(w.body(wheel).angular_velocity().z, torque / inertia * T(10), T(2e-3)));
+    CHECK(near(w.body(cart).linear_velocity().x, T(2) / w.body(cart).mass() * T(10), T(2e-3)));
 }
 
 TEST_CASE_TEMPLATE("regression: a motor slower than the sleep speeds keeps turning: 0.02 rad/s for 20 s is 0.4 rad", T, float,

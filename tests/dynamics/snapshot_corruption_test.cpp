@@ -105,6 +105,9 @@ TEST_CASE_TEMPLATE("restore_snapshot rejects each corruption seen, leaving the w
     bad(at.joints + member_offset(joint, joint.b.index), std::uint32_t(1000), "joint body out of range");
     bad(at.joints + member_offset(joint, joint.alive), two, "joint bool byte 2");
     bad(at.joints + sizeof(Joint<T>) + member_offset(joint, joint.alive), std::uint8_t(1), "freed joint alive again");
+    // What create_joint refuses: a negative length, a hinge limit beyond pi.
+    bad(at.joints + member_offset(joint, joint.length), T(-3), "joint length negative");
+    bad(at.joints + member_offset(joint, joint.upper_angle), T(3.5), "hinge limit beyond pi");
     // Broad-phase boxes: NaN, inverted, a dead slot's box not empty.
     bad(at.bounds + sizeof(Aabb<T>) + member_offset(box, box.min.x), std::numeric_limits<T>::quiet_NaN(), "NaN bounds");
     bad(at.bounds + sizeof(Aabb<T>) + member_offset(box, box.min.x), T(1e6), "inverted bounds");
@@ -114,6 +117,9 @@ TEST_CASE_TEMPLATE("restore_snapshot rejects each corruption seen, leaving the w
     bad(at.box_user_data + 17, two, "body bool byte 2");
     bad(at.box_position - 8, std::uint32_t(99), "shape index out of range");
     bad(at.box_position, std::numeric_limits<T>::quiet_NaN(), "NaN position");
+    // A gravity scale set_gravity_scale refuses (FLT_MAX made gravity x scale inf).
+    bad(at.box_user_data - sizeof(Quat<T>) - sizeof(Vec3<T>) - 3 * sizeof(T), std::numeric_limits<T>::max(),
+        "gravity scale beyond max_size");
     bad(at.box_position + sizeof(Vec3<T>), T(3), "orientation not unit");
 }
 

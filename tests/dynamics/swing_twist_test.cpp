@@ -118,6 +118,53 @@ TEST_CASE_TEMPLATE("inside its limits a swing-twist joint swings like a ball joi
     CHECK(w.joint(st).swing_impulse == T(0));
 }
 
+TEST_CASE_TEMPLATE("regression: a cone of pi limits no swing: a rod swings through 180 degrees at its speed", T, float, double) {
+    // The cone row still ran at pi, its gap (pi - swing) / h closing to zero at 180°: a rod
+    // swinging sideways at 2 rad/s stopped dead there in one step.
+    WorldSettings<T> s;
+    s.gravity = Vec3<T>::zero();
+    World<T> w(s);
+    const Vec3<T> pivot{T(0), T(2), T(0)};
+    const BodyId a = anchor_at(w, pivot);
+    const BodyId rod = rod_from(w, pivot, Vec3<T>{T(0), T(-1), T(0)});
+    w.create_joint(JointDef<T>::swing_twist(a, rod, pivot, Vec3<T>{T(0), T(-1), T(0)}, ScalarTraits<T>::pi, T(-3), T(3)));
+    w.body(rod).set_angular_velocity(Vec3<T>{T(0), T(0), T(2)});
+    w.body(rod).set_linear_velocity(Vec3<T>{T(1), T(0), T(0)});  // its centre, 0.5 m out, at 2 rad/s
+    T slowest = T(2);
+    test::simulate(w, T(3), [&](int) { slowest = std::min(slowest, length(w.body(rod).angular_velocity())); });
+    CHECK(slowest > T(1.98));  // three turns' worth of 180° crossings (was 0 at the first)
+}
+
+TEST_CASE_TEMPLATE("regression: angle limits beyond pi are refused, the world unchanged", T, float, double) {
+    // The hinge angle is measured in (-pi, pi]: limits of [-4, 4] let an arm turn freely, and
+    // [0, 3.5] read the angle past pi as -3.1 and threw the arm on every turn (1 rad/s became 9.2).
+    World<T> w;
+    const Vec3<T> at{T(0), T(2), T(0)};
+    const BodyId a = anchor_at(w, at);
+    const BodyId b = rod_from(w, at, Vec3<T>::unit_x());
+    JointDef<T> hinge = JointDef<T>::hinge(a, b, at, Vec3<T>::unit_z());
+    hinge.enable_limit = true;
+    hinge.lower_angle = T(0);
+    hinge.upper_angle = T(3.5);
+    CHECK_THROWS_AS(w.create_joint(hinge), InvalidArgument);
+    hinge.lower_angle = T(-4);
+    hinge.upper_angle = T(0);
+    CHECK_THROWS_AS(w.create_joint(hinge), InvalidArgument);
+    CHECK_THROWS_AS(w.create_joint(JointDef<T>::swing_twist(a, b, at, Vec3<T>::unit_x(), T(1), T(-3.5), T(0))), InvalidArgument);
+    hinge.lower_angle = -ScalarTraits<T>::pi;
+    hinge.upper_angle = ScalarTraits<T>::pi;
+    const JointId j = w.create_joint(hinge);
+    CHECK(j.index == 0);  // the refused ones took no slot
+    CHECK_THROWS_AS(w.set_joint_limits(j, true, T(-1), T(3.2)), InvalidArgument);
+    CHECK(w.joint(j).upper_angle == ScalarTraits<T>::pi);
+    // A slider's limits are lengths: any ordered pair.
+    JointDef<T> slider = JointDef<T>::prismatic(a, b, at, Vec3<T>::unit_x());
+    slider.enable_limit = true;
+    slider.lower_translation = T(-10);
+    slider.upper_translation = T(10);
+    CHECK_NOTHROW(w.create_joint(slider));
+}
+
 TEST_CASE_TEMPLATE("swing-twist definitions are checked", T, float, double) {
     World<T> w;
     const BodyId a = anchor_at(w, Vec3<T>{T(0), T(2), T(0)});

@@ -21,6 +21,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <type_traits>
@@ -49,6 +50,49 @@ TEST_CASE("the thread pool runs every item from 0 to count - 1 exactly once, cal
                 CHECK(wrong == 0);
             }
         }
+    }
+}
+
+TEST_CASE("regression: a range that throws reaches the caller once every range is done, and the pool goes on") {
+    // A worker's exception ended the process (std::terminate), and one thrown on the caller left
+    // the workers running on the job while the caller unwound.
+    ThreadPool pool(3);
+    for (const std::uint32_t bad : {0u, 500u, 999u}) {
+        std::atomic<int> ran{0};
+        CHECK_THROWS_AS(parallel_for(&pool, 1000u, 1u,
+                                     [&](std::uint32_t begin, std::uint32_t end) {
+                                         ran.fetch_add(1, std::memory_order_relaxed);
+                                         if (begin <= bad && bad < end) throw std::runtime_error("range");
+                                     }),
+                        std::runtime_error);
+        CHECK(ran.load() >= 1);
+        std::atomic<std::uint32_t> items{0};
+        parallel_for(&pool, 1000u, 1u, [&](std::uint32_t begin, std::uint32_t end) { items.fetch_add(end - begin); });
+        CHECK(items.load() == 1000u);
+    }
+}
+
+TEST_CASE_TEMPLATE("regression: a body at half the largest T beside a ball steps a long step on one and two workers", T, float,
+                   double) {
+    // The first-touch sweep of a ball's contact took the body's travel over 2 dt, beyond the
+    // largest T, and handed it to shape_cast, which refused it: step threw half done, and on
+    // two workers the process crashed (the exception left a worker, or left the caller while the
+    // workers still ran). Such a travel is now no sweep.
+    for (const unsigned workers : {1u, 2u}) {
+        World<T> w;
+        w.set_workers(workers);
+        BodyDef<T> d;
+        const BodyId ball = w.create_body(Sphere<T>(T(0.5)), d);
+        BodyDef<T> k;
+        k.type = BodyType::kinematic;
+        k.position = {T(1.2), T(0), T(0)};
+        const BodyId kin = w.create_body(Sphere<T>(T(0.5)), k);
+        w.step(T(1) / 60);  // their speculative contact
+        w.set_velocity(kin, Vec3<T>{-std::numeric_limits<T>::max(), T(0), T(0)}, Vec3<T>::zero());
+        CHECK_NOTHROW(w.step(T(1)));
+        CHECK_NOTHROW(w.step(T(1) / 60));
+        CHECK(is_finite(w.body(ball).position()));
+        CHECK(is_finite(w.body(ball).linear_velocity()));
     }
 }
 

@@ -150,6 +150,12 @@ struct Joint {
 
 namespace detail {
 
+/// Whether angle limits (rad) lie within [-pi, pi], the range the joint's angle is measured in.
+template <class T>
+bool angle_limits_ok(T lower, T upper) {
+    return lower >= -ScalarTraits<T>::pi && upper <= ScalarTraits<T>::pi;
+}
+
 /// A joint's rows for one step (world frame), built in prepare and solved every substep.
 template <class T>
 struct JointConstraint {
@@ -164,6 +170,7 @@ struct JointConstraint {
     Vec3<T> pull{};
     Vec3<T> axis_a0{}, axis_b0{}, ref_a0{}, ref_b0{};  ///< hinge frames at the start of the step
     Quat<T> qa0{}, qb0{};                              ///< orientations at the start of the step
+    T motor_start_speed{};                             ///< a motor's axis speed at the start of the step (World::motor_turning)
     Softness<T> softness{};
     Softness<T> limit_softness{};  ///< the contacts' frequency, damped at detail::limit_damping_ratio: a contact in angle
     /// m/s: cap on the speed at which a stretched joint is pulled together (the world's speed
@@ -401,6 +408,9 @@ template <class T>
 void solve_swing_twist_limits(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& a, SolverBody<T>& b, bool use_bias, T h) {
     const SwingTwist<T> st = swing_twist_state(c, a.dq, b.dq);
     solve_angular_limit(c, a, b, st.twist_axis, st.twist, j.lower_angle, j.upper_angle, j.axial_impulse, use_bias, h);
+    // A swing never exceeds pi, so a cone of pi limits nothing; its row would still see a gap
+    // closing to zero at 180° and stop a rod swinging through it dead (2 rad/s to 0 in a step).
+    if (j.cone_angle >= ScalarTraits<T>::pi) return;
     T along = -j.swing_impulse;  // pushes back: along −normal
     solve_angular_limit(c, a, b, st.swing_normal, st.swing, -ScalarTraits<T>::max, j.cone_angle, along, use_bias, h);
     j.swing_impulse = -along;

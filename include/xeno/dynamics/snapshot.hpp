@@ -492,7 +492,9 @@ void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
     if (!(std::isfinite(b.linear_damping_) && b.linear_damping_ >= T(0) && std::isfinite(b.angular_damping_) &&
           b.angular_damping_ >= T(0)))
         bad("a body's damping is not finite and >= 0; body slot");
-    if (!std::isfinite(b.gravity_scale_) || !(std::isfinite(b.sleep_time_) && b.sleep_time_ >= T(0)))
+    // The gravity scale within what Body::set_gravity_scale takes (FLT_MAX made gravity × scale inf).
+    if (!(std::isfinite(b.gravity_scale_) && std::abs(b.gravity_scale_) <= ScalarTraits<T>::max_size) ||
+        !(std::isfinite(b.sleep_time_) && b.sleep_time_ >= T(0)))
         bad("a body's gravity scale or sleep time is out of range; body slot");
     if (std::isnan(b.density_)) bad("a body's density is not a number; body slot");  // any other value is checked when used
     if (b.type_ == BodyType::dynamic) {
@@ -681,10 +683,12 @@ void SnapshotAccess<T>::check_joint(const World<T>& w, std::size_t k) {
     // The ranges World::create_joint accepts: anchors within max_joint_lever of their bodies, a
     // length within max_size, a motor speed within max_setting_length.
     ok = ok && length(j.local_anchor_a) <= detail::max_joint_lever<T>() &&
-         length(j.local_anchor_b) <= detail::max_joint_lever<T>() && std::abs(j.length) <= ScalarTraits<T>::max_size &&
+         length(j.local_anchor_b) <= detail::max_joint_lever<T>() && j.length >= T(0) && j.length <= ScalarTraits<T>::max_size &&
          std::abs(j.motor_speed) <= detail::max_setting_length<T>();
     ok = ok && j.cone_angle >= T(0) && j.cone_angle <= ScalarTraits<T>::pi && std::isfinite(j.swing_impulse) &&
          j.swing_impulse >= T(0) && angular_ok(w, j.swing_impulse, a, b);
+    if (j.type == JointType::hinge || j.type == JointType::swing_twist)
+        ok = ok && detail::angle_limits_ok(j.lower_angle, j.upper_angle);
     if (ok && (j.type == JointType::hinge || j.type == JointType::prismatic || j.type == JointType::swing_twist))
         ok = detail::unit_vector(j.local_axis_a) && detail::unit_vector(j.local_axis_b) && detail::unit_vector(j.local_ref_a) &&
              detail::unit_vector(j.local_ref_b);

@@ -479,7 +479,7 @@ private:
     void rebuild_joint_pairs();
     Joint<T> make_joint(const JointDef<T>& def, const Body<T>& a, const Body<T>& b, const char* where);
     void set_axis_limit_motor(Joint<T>& j, const JointDef<T>& def, const Body<T>& a, const Body<T>& b, const char* where);
-    static void check_limits(T lower, T upper, const char* where);
+    static void check_limits(T lower, T upper, bool angle, const char* where);
     static MassProperties<T> unit_mass(const Shape<T>* shape, const Compound<T>* compound) {
         return shape ? mass_properties(*shape, T(1)) : compound->unit_mass_properties();
     }
@@ -646,7 +646,8 @@ private:
     void run_sleep_clocks(T dt);
     void keep_moving_islands_awake();
     void keep_drifting_islands_awake();
-    bool motor_turning(const Joint<T>& j) const;
+    T motor_axis_speed(const Joint<T>& j) const;
+    bool motor_turning(const Joint<T>& j, T start_speed) const;
     bool sliding(const Contact<T>& c) const;
     void update_query_tree();
     void rebuild_query_tree();
@@ -1858,6 +1859,9 @@ ContactManifold<T> World<T>::at_first_touch(const Body<T>& a, std::uint32_t ca, 
     const Vec3<T> travel_a = a.linear_velocity_ * horizon, travel_b = b.linear_velocity_ * horizon;
     const Vec3<T> relative = travel_a - travel_b;
     const T gap = -deepest;
+    // A travel beyond the largest T (a body at half of it for 2 dt) is no sweep: shape_cast would
+    // refuse it and throw out of the step, half done (with workers, out of a worker).
+    if (!is_finite(relative)) return now;
     if (!(gap > settings_.linear_slop) || !(length_squared(relative) > gap * gap)) return now;
     // The sweep leaves turning out: only while turning moves the surfaces by less than a quarter
     // of the gap (a ball turns without moving its surface; what it strikes may spin).
@@ -2919,26 +2923,44 @@ void World<T>::keep_moving_islands_awake() {
                 island_min[island_root(d)] = T(0);
         }
     }
-    for (const Joint<T>& j : joints_)
-        if (motor_turning(j) && (would_sleep(j.a.index) || would_sleep(j.b.index)))
+    for (const detail::JointConstraint<T>& row : joint_rows_) {  // this step's joints between awake bodies
+        const Joint<T>& j = joints_[row.joint];
+        if (motor_turning(j, row.motor_start_speed) && (would_sleep(j.a.index) || would_sleep(j.b.index)))
             for (const std::uint32_t i : {j.a.index, j.b.index})
                 if (bodies_[i].type_ == BodyType::dynamic) island_min[island_root(i)] = T(0);
+    }
     keep_drifting_islands_awake();
 }
 
-/// Whether a joint's motor drives its bodies: enabled, with a speed and a torque (or force), and
-/// moving at half its speed or more. A motor slower than the sleep speeds (a hinge at 0.02 rad/s)
-/// stopped after sleep_time; a stalled motor (held by a limit or a load above its torque) lets
-/// its island sleep.
+/// The relative speed of a hinge's (rad/s) or a slider's (m/s) bodies about or along its axis.
 template <class T>
-bool World<T>::motor_turning(const Joint<T>& j) const {
-    if (!joint_active(j) || !j.enable_motor || j.motor_speed == T(0) || !(j.max_motor_torque > T(0))) return false;
+T World<T>::motor_axis_speed(const Joint<T>& j) const {
     const Body<T>& a = bodies_[j.a.index];
     const Body<T>& b = bodies_[j.b.index];
     const Vec3<T> axis = rotate(a.orientation_, j.local_axis_a);
-    const T speed = j.type == JointType::hinge ? dot(b.angular_velocity_ - a.angular_velocity_, axis)
-                                               : dot(b.linear_velocity_ - a.linear_velocity_, axis);
-    return speed * j.motor_speed >= T(0.5) * j.motor_speed * j.motor_speed;
+    return j.type == JointType::hinge ? dot(b.angular_velocity_ - a.angular_velocity_, axis)
+                                      : dot(b.linear_velocity_ - a.linear_velocity_, axis);
+}
+
+/// Whether a joint's motor drives its bodies: enabled, with a speed and a torque (or force), and
+/// moving at half its speed or more, or still gaining on it (since `start_speed`, the step's
+/// start) by 1 % or more of what its torque alone gives in a step. A motor slower than the sleep
+/// speeds (a hinge at 0.02 rad/s) stopped after sleep_time, and so did a heavy wheel spun up by a
+/// small torque (2 N·m on 19.6 kg·m², 0.1 rad/s²) before it reached them; a stalled motor (held
+/// by a limit or a load above its torque) gains nothing and lets its island sleep.
+template <class T>
+bool World<T>::motor_turning(const Joint<T>& j, T start_speed) const {
+    if (!joint_active(j) || !j.enable_motor || j.motor_speed == T(0) || !(j.max_motor_torque > T(0))) return false;
+    const T speed = motor_axis_speed(j);
+    if (speed * j.motor_speed >= T(0.5) * j.motor_speed * j.motor_speed) return true;
+    const Body<T>& a = bodies_[j.a.index];
+    const Body<T>& b = bodies_[j.b.index];
+    const Vec3<T> axis = rotate(a.orientation_, j.local_axis_a);
+    const T response = j.type == JointType::hinge ? dot(axis, (a.inverse_inertia_world() + b.inverse_inertia_world()) * axis)
+                                                  : a.inverse_mass_ + b.inverse_mass_;
+    const T dt = last_substep_ * static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+    const T gained = j.motor_speed > T(0) ? speed - start_speed : start_speed - speed;
+    return gained > T(0.01) * j.max_motor_torque * dt * response;
 }
 
 /// An island in free flight, held by no static or kinematic body through a contact or a joint,
