@@ -485,7 +485,14 @@ XENO_WIDE_INLINE void solve_group(WideContact<T, W>& c, const WideTurn<Wide<T, W
     constexpr int kImpactSweeps = 3, kFrictionRounds = 4;
     const typename V::Mask impact = pushed * (c.inv_mass_a + c.inv_mass_b) > V::splat(kImpactSpeed);
     const bool struck = bits(impact) != 0;
-    if (struck && marks != nullptr) mark_impacts<W>(c.a, c.b, bits(impact), *marks);
+    // Bodies struck harder than kHardImpactSpeed get the passes across their manifolds
+    // (WideContactRows::solve_impacts): at the threshold of every impact, a pile of 1,000 boxes
+    // dropped on the floor solved in 2.9 ms a step instead of 1.7; at 1 m/s, 2.4 ms.
+    constexpr T kHardImpactSpeed = T(1);  // m/s
+    if (struck && marks != nullptr) {
+        const typename V::Mask hard = pushed * (c.inv_mass_a + c.inv_mass_b) > V::splat(kHardImpactSpeed);
+        if (bits(hard) != 0) mark_impacts<W>(c.a, c.b, bits(hard), *marks);
+    }
     if (struck)
         for (int k = 0; k < kImpactSweeps; ++k)
             sweep_normal_rows<Turning>(c, t, A, B, n_a, n_b, moved, pass, select(impact, c.count, zero), true);
@@ -823,8 +830,8 @@ private:
     struct Flag {
         std::atomic<bool> flag{false};
         Flag() = default;
-        Flag(const Flag&) {}
-        Flag& operator=(const Flag&) { return *this; }
+        Flag(const Flag&) noexcept {}
+        Flag& operator=(const Flag&) noexcept { return *this; }
     } impact_;
 };
 
