@@ -341,6 +341,32 @@ TEST_CASE_TEMPLATE("move_kinematic reaches its target pose in one step and carri
     CHECK(std::abs(w.body(box).position().y - start.y) < T(0.01));
 }
 
+TEST_CASE_TEMPLATE("regression: move_kinematic turns the short way to a target given as the negated quaternion", T, float,
+                   double) {
+    // Flipping the turn to the short way round built the quaternion with its parts out of order
+    // (Quat's constructor takes w first): a turntable at 1 rad/s whose yaw a game wraps into
+    // (-pi, pi] spun at 192 rad/s from the wrap on, and a body told to stay where it was (q and
+    // -q) spun at 191 rad/s.
+    World<T> w;
+    const T dt = w.settings().fixed_time_step;
+    BodyDef<T> pd;
+    pd.type = BodyType::kinematic;
+    const BodyId table = w.create_body(Box<T>(T(2), T(0.25), T(2)), pd);
+    T yaw = T(0), fastest = T(0);
+    for (int i = 0; i < 240; ++i) {  // 1 rad/s for 4 s: the yaw wraps at pi, near 3.14 s
+        yaw += dt;
+        const T wrapped = yaw > ScalarTraits<T>::pi ? yaw - T(2) * ScalarTraits<T>::pi : yaw;
+        Quat<T> target = Quat<T>::from_axis_angle(Vec3<T>::unit_y(), wrapped);
+        if (i % 2 == 1) target = Quat<T>{-target.w, -target.x, -target.y, -target.z};  // the same turn
+        w.move_kinematic(table, Vec3<T>::zero(), target, dt);
+        fastest = std::max(fastest, length(w.body(table).angular_velocity()));
+        w.step(dt);
+    }
+    CHECK(std::abs(fastest - T(1)) < T(1e-3));
+    CHECK(std::abs(std::abs(dot(w.body(table).orientation(), Quat<T>::from_axis_angle(Vec3<T>::unit_y(), T(240) * dt))) - T(1)) <
+          T(1e-4));
+}
+
 TEST_CASE_TEMPLATE("set_awake(false) puts a falling island to sleep in mid-air, set_awake(true) lets it fall", T, float, double) {
     World<T> w;  // the default settings
     add_ground(w);

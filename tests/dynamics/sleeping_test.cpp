@@ -449,3 +449,72 @@ TEST_CASE_TEMPLATE("regression: sleepers follow a new gravity, less friction, a 
         CHECK(w.body(box).awake());
     }
 }
+
+TEST_CASE_TEMPLATE("regression: moving a joint's static anchor wakes the sleeper hanging from it", T, float, double) {
+    // set_transform woke the moved body's contacts only: a bob asleep on a 1 m ball joint stayed
+    // 1.41 m from its anchor after the anchor was moved 1 m sideways, the joint broken for good.
+    World<T> w;  // default settings: sleeping on
+    BodyDef<T> a;
+    a.type = BodyType::static_body;
+    a.position = {T(0), T(5), T(0)};
+    const BodyId anchor = w.create_body(Box<T>(T(0.05), T(0.05), T(0.05)), a);
+    BodyDef<T> d;
+    d.position = {T(0), T(4), T(0)};
+    const BodyId bob = w.create_body(Sphere<T>(T(0.1)), d);
+    w.create_joint(JointDef<T>::ball(anchor, bob, Vec3<T>{T(0), T(5), T(0)}));
+    test::simulate(w, T(2));
+    REQUIRE(!w.body(bob).awake());
+    w.set_transform(anchor, Vec3<T>{T(1), T(5), T(0)}, Quat<T>::identity());
+    CHECK(w.body(bob).awake());
+    test::simulate(w, T(3));  // it swings under the new anchor, the joint holding it 1 m away
+    CHECK(std::abs(length(w.body(bob).position() - Vec3<T>{T(1), T(5), T(0)}) - T(1)) < T(0.01));
+}
+
+TEST_CASE_TEMPLATE("regression: a static ramp made frictionless wakes the box asleep on it, which slides g sin a t^2 / 2", T,
+                   float, double) {
+    // Body::set_material woke only the body itself, which for a static ramp is nothing: the box
+    // stayed asleep on a frictionless slope (0 m in 1 s instead of 0.975 m).
+    World<T> w;
+    const T angle = T(0.2);
+    BodyDef<T> r;
+    r.type = BodyType::static_body;
+    r.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);
+    const BodyId ramp = w.create_body(Box<T>(T(20), T(0.5), T(5)), r);
+    const Vec3<T> up = rotate(r.orientation, Vec3<T>::unit_y());
+    BodyDef<T> d;
+    d.position = up * T(1.0);
+    d.orientation = r.orientation;
+    const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), d);
+    test::simulate(w, T(3));
+    REQUIRE(!w.body(box).awake());
+    Material<T> slick = w.body(ramp).material();
+    slick.friction = T(0);
+    w.body(ramp).set_material(slick);
+    const Vec3<T> start = w.body(box).position();
+    test::simulate(w, T(1));
+    const double slid = double(length(w.body(box).position() - start));
+    CHECK(std::abs(slid - 0.5 * 9.81 * std::sin(0.2)) < 0.02);
+}
+
+TEST_CASE_TEMPLATE("regression: a sleep_time of 0 or under a quarter step puts no moving body to sleep", T, float, double) {
+    // The clock started at the rest pose it had just set, ran a quarter rate for a fast body
+    // there, and 0 >= sleep_time held for any clock: a box thrown at 10 m/s stopped in mid-air
+    // after one step, a ball rolling at 5 m/s after 8 cm.
+    for (const T sleep_time : {T(0), T(0.004)}) {
+        WorldSettings<T> s;
+        s.sleep_time = sleep_time;
+        World<T> w(s);
+        add_floor(w);
+        BodyDef<T> d;
+        d.position = {T(0), T(5), T(0)};
+        d.linear_velocity = {T(10), T(0), T(0)};
+        const BodyId thrown = w.create_body(Box<T>(T(0.2), T(0.2), T(0.2)), d);
+        test::simulate(w, T(0.5));
+        CAPTURE(sleep_time);
+        CHECK(w.body(thrown).awake());
+        CHECK(test::near(w.body(thrown).position().x, T(5), T(0.01)));                         // 10 m/s for 0.5 s
+        CHECK(test::near(w.body(thrown).position().y, T(5) - T(0.5 * 9.81 * 0.25), T(0.02)));  // falling
+        test::simulate(w, T(5));
+        CHECK(!w.body(thrown).awake());  // and it still sleeps once at rest
+    }
+}

@@ -188,11 +188,13 @@ public:
     void apply_impulse_at(const Vec3<T>& impulse, const Vec3<T>& world_point);
     void apply_linear_impulse(const Vec3<T>& impulse);
     void apply_angular_impulse(const Vec3<T>& impulse);
-    /// Wakes the body: less friction may set a sleeper on a slope sliding.
+    /// Wakes the body, and at the next step what touches it: less friction may set a sleeper on
+    /// a slope sliding, on this body or under it (a static ramp's sleepers wake too).
     void set_material(const Material<T>& m) {
         detail::validate(m, "Body::set_material");
         material_ = m;
         wake();
+        moved_ = true;  // World::keep_poses_and_update_bounds: a static or kinematic body's sleepers wake
     }
     void set_damping(T linear, T angular);
     void set_gravity_scale(T scale);

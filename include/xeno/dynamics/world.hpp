@@ -47,6 +47,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <deque>
 #include <functional>
@@ -644,6 +645,9 @@ private:
     void discard_overflowed_solve();
     void update_sleep(T dt);
     void run_sleep_clocks(T dt);
+    /// An island's least clock has run its sleep_time (a clock of 0 has not started: with a
+    /// sleep_time of 0 every island slept at once, thrown bodies in mid-air included).
+    bool clock_done(T clock) const { return clock > T(0) && clock >= settings_.sleep_time; }
     void keep_moving_islands_awake();
     void keep_drifting_islands_awake();
     T motor_axis_speed(const Joint<T>& j) const;
@@ -678,7 +682,7 @@ private:
     std::optional<RayHit<T>> nearest_hit(std::uint32_t slot, const Ray<T>& ray) const;
     template <class Exact>
     std::vector<BodyId> overlapping(const Aabb<T>& box, const QueryFilter<T>& filter, Exact&& exact) const;
-    void wake_contacts_of(std::uint32_t slot);
+    void wake_neighbours_of(std::uint32_t slot);
     void end_contacts_of(std::uint32_t slot);
     void set_shape_impl(std::uint32_t slot, std::shared_ptr<const Shape<T>> shape, std::shared_ptr<const Compound<T>> compound,
                         MassUpdate mass, const char* where);
@@ -723,6 +727,9 @@ private:
     // Per slot: bounds_ (and the early-out bound) were placed while the body slept, with the
     // speculative distance bounds_margin_. Asleep and not moved, it would get the same box again.
     std::vector<std::uint8_t> bounds_asleep_;
+    /// By slot: a static or kinematic body changed since the last step (moved_), whose touching
+    /// bodies keep_poses_and_update_bounds wakes. Zero between steps.
+    std::vector<std::uint8_t> retouched_;
     T bounds_margin_ = T(-1);
     std::vector<Transform<T>> previous_pose_;  ///< per slot: pose before the last step
     SweepAndPrune<T> sweep_;
@@ -1010,7 +1017,7 @@ void World<T>::destroy_body(BodyId id) {
 /// them), waking the bodies on the other side: what destroying, disabling or reshaping it does.
 template <class T>
 void World<T>::end_contacts_of(std::uint32_t slot) {
-    wake_contacts_of(slot);
+    wake_neighbours_of(slot);
     contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
                                    [&](const Contact<T>& c) {
                                        const bool gone = c.a.index == slot || c.b.index == slot;
@@ -1021,12 +1028,17 @@ void World<T>::end_contacts_of(std::uint32_t slot) {
     index_contacts(contact_start_.empty() ? 0 : contact_start_.size() - 1);  // its own size: allocates nothing
 }
 
+/// Wakes the bodies a body touches and the ones jointed to it: whatever moves, reshapes or
+/// retypes it must reach sleepers resting on it or hanging from it (a bob asleep on a ball joint
+/// stayed 1.41 m from its static anchor after the anchor was moved 1 m).
 template <class T>
-void World<T>::wake_contacts_of(std::uint32_t slot) {
+void World<T>::wake_neighbours_of(std::uint32_t slot) {
     for (const Contact<T>& c : contacts_of(id_of(slot))) {
         const BodyId other = c.a.index == slot ? c.b : c.a;
         if (contains(other)) bodies_[other.index].wake();
     }
+    for (const Joint<T>& j : joints_)
+        if (j.alive && (j.a.index == slot || j.b.index == slot)) bodies_[j.a.index == slot ? j.b.index : j.a.index].wake();
 }
 
 template <class T>
@@ -1309,6 +1321,8 @@ void World<T>::keep_poses_and_update_bounds(T dt) {
     // query tree compares against it after the step, interpolated_transform blends from it).
     const bool all = early_out_.size() != bodies_.size() || settings_.speculative_distance != bounds_margin_;
     if (all) early_out_.resize(bodies_.size()), bounds_asleep_.assign(bodies_.size(), 0);
+    if (retouched_.size() != bodies_.size()) retouched_.assign(bodies_.size(), 0);
+    std::atomic<bool> any_retouched{false};
     bounds_margin_ = settings_.speculative_distance;
     const auto place_bound = [&](std::uint32_t i, const Body<T>& b) {
         if (b.mesh() || b.compound()) early_out_.clear(i);
@@ -1325,6 +1339,10 @@ void World<T>::keep_poses_and_update_bounds(T dt) {
                     if (all) place_bound(i, b);
                     continue;
                 }
+                if (b.type_ != BodyType::dynamic && b.moved_) {
+                    retouched_[i] = 1;
+                    any_retouched.store(true, std::memory_order_relaxed);
+                }
                 // A sleeper that has not moved gets the box it got last step: skip it.
                 // (Whatever moves or reshapes a body sets moved_, create_body included.)
                 const bool asleep = b.type_ == BodyType::dynamic && !b.awake_ && length_squared(b.linear_velocity_) == T(0);
@@ -1336,6 +1354,12 @@ void World<T>::keep_poses_and_update_bounds(T dt) {
                 b.moved_ = false;
             }
         });
+    // A static or kinematic body changed between steps wakes what rests on it: a material made
+    // slippery (Body::set_material, which cannot reach the world) left a box asleep on a
+    // frictionless ramp. (The world's own edits wake these at once as well.)
+    if (any_retouched.load(std::memory_order_relaxed))
+        for (std::uint32_t i = 0; i < bodies_.size(); ++i)
+            if (retouched_[i] != 0) retouched_[i] = 0, wake_neighbours_of(i);
 }
 
 // The queries' tree holds each body's current box: after the step, every body whose pose changed
@@ -2869,7 +2893,7 @@ void World<T>::update_sleep(T dt) {
     keep_moving_islands_awake();
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         Body<T>& b = bodies_[i];
-        if (!awake_dynamic(b) || !(island_sleep_time_[island_root(i)] >= settings_.sleep_time)) continue;
+        if (!awake_dynamic(b) || !clock_done(island_sleep_time_[island_root(i)])) continue;
         b.awake_ = false;
         b.linear_velocity_ = Vec3<T>::zero();
         b.angular_velocity_ = Vec3<T>::zero();
@@ -2890,11 +2914,16 @@ void World<T>::run_sleep_clocks(T dt) {
         Body<T>& b = bodies_[i];
         if (!awake_dynamic(b)) continue;
         const bool slow = length_squared(b.linear_velocity_) < lin_sq && length_squared(b.angular_velocity_) < ang_sq;
-        if (b.sleep_time_ == T(0)) b.rest_position_ = b.position_, b.rest_orientation_ = b.orientation_;  // (re)starts
         // Near its rest pose but faster than the sleep speeds, the clock runs at a quarter rate,
         // so such a body sleeps after 4 × sleep_time: one still settling (a rock rocking onto a
         // face, at 5 cm/s and 0.24 rad/s when it slept at full rate) gets time to come to rest.
-        const T rate = slow ? T(1) : b.distance_from_rest() <= reach ? T(0.25) : T(0);
+        // A stopped clock (re)starts from a new rest pose when the body is slow or has left the
+        // old one; a fast body is not judged against a pose set this step, where every body is
+        // (with sleep_time <= dt / 4 a box thrown at 10 m/s slept in mid-air after one step).
+        const bool near = b.distance_from_rest() <= reach;
+        const bool fresh = b.sleep_time_ == T(0) && (slow || !near);
+        if (fresh) b.rest_position_ = b.position_, b.rest_orientation_ = b.orientation_;
+        const T rate = slow ? T(1) : near && !fresh ? T(0.25) : T(0);
         b.sleep_time_ = (rate > T(0) && b.allow_sleep_) ? b.sleep_time_ + rate * dt : T(0);
         const std::uint32_t root = island_root(i);
         island_sleep_time_[root] = std::min(island_sleep_time_[root], b.sleep_time_);
@@ -2909,7 +2938,7 @@ void World<T>::keep_moving_islands_awake() {
     std::vector<T>& island_min = island_sleep_time_;
     const auto would_sleep = [&](std::uint32_t i) {
         const Body<T>& b = bodies_[i];
-        return b.type_ == BodyType::dynamic && b.awake_ && island_min[island_root(i)] >= settings_.sleep_time;
+        return b.type_ == BodyType::dynamic && b.awake_ && clock_done(island_min[island_root(i)]);
     };
     for (const Contact<T>& c : contacts_) {
         if (!c.touching) continue;
@@ -2975,7 +3004,7 @@ void World<T>::keep_drifting_islands_awake() {
     std::vector<T>& island_min = island_sleep_time_;
     const auto would_sleep = [&](std::uint32_t i) {
         const Body<T>& b = bodies_[i];
-        return b.alive_ && b.type_ == BodyType::dynamic && b.awake_ && island_min[island_root(i)] >= settings_.sleep_time;
+        return b.alive_ && b.type_ == BodyType::dynamic && b.awake_ && clock_done(island_min[island_root(i)]);
     };
     bool any = false;  // nearly every step nothing is about to sleep
     for (std::uint32_t i = 0; i < bodies_.size() && !any; ++i) any = would_sleep(i);

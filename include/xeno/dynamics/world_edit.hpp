@@ -75,7 +75,7 @@ void World<T>::set_transform(BodyId id, const Vec3<T>& position, const Quat<T>& 
     b.wake();
     previous_pose_[slot] = b.transform();
     place_in_broad_phase(slot);
-    wake_contacts_of(slot);
+    wake_neighbours_of(slot);
     wake_overlapping(slot);  // where it is
 }
 
@@ -110,7 +110,7 @@ void World<T>::move_kinematic(BodyId id, const Vec3<T>& position, const Quat<T>&
     detail::require_at_most(dt, detail::max_time_step<T>(), where, "dt", " s");
     const Vec3<T> v = (position - b.position_) / dt;
     Quat<T> turn = normalized(orientation) * conjugate(b.orientation_);
-    if (turn.w < T(0)) turn = {-turn.x, -turn.y, -turn.z, -turn.w};  // the shorter way round
+    if (turn.w < T(0)) turn = {-turn.w, -turn.x, -turn.y, -turn.z};  // the shorter way round (Quat is w, x, y, z)
     const Vec3<T> axis_sin{turn.x, turn.y, turn.z};                  // axis · sin(θ/2)
     const T sin_half = length(axis_sin);
     Vec3<T> w = Vec3<T>::zero();
@@ -208,7 +208,7 @@ void World<T>::set_type(BodyId id, BodyType type) {
         m = dynamic_mass(b.convex_shape(), b.compound(), b.density_, T(0), where);
     }
     query_tree_for(type).reserve(bodies_.size());  // may throw: before anything changes
-    wake_contacts_of(slot);
+    wake_neighbours_of(slot);
     b.type_ = type;
     b.force_ = b.torque_ = Vec3<T>::zero();
     b.sleep_time_ = T(0);
@@ -234,7 +234,7 @@ void World<T>::set_collision_filter(BodyId id, std::uint32_t layer, std::uint32_
     b.layer_ = layer;
     b.mask_ = mask;
     b.wake();
-    wake_contacts_of(slot);
+    wake_neighbours_of(slot);
     wake_overlapping(slot);
 }
 
@@ -250,7 +250,7 @@ void World<T>::set_sensor(BodyId id, bool sensor) {
     if (b.sensor_ != sensor) end_contacts_of(slot);
     b.sensor_ = sensor;
     b.wake();
-    wake_contacts_of(slot);
+    wake_neighbours_of(slot);
     wake_overlapping(slot);
 }
 
@@ -275,9 +275,7 @@ void World<T>::set_enabled(BodyId id, bool enabled) {
     if (b.enabled_ == enabled) return;
     if (!enabled) {
         wake_overlapping(slot);
-        end_contacts_of(slot);
-        for (const Joint<T>& j : joints_)
-            if (j.alive && (j.a.index == slot || j.b.index == slot)) bodies_[j.a.index == slot ? j.b.index : j.a.index].wake();
+        end_contacts_of(slot);  // wakes its joint partners too
     }
     b.enabled_ = enabled;
     b.wake();
