@@ -25,6 +25,7 @@
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <utility>
 #include <vector>
 #if defined(__x86_64__) || defined(__i386__) || defined(_M_X64) || defined(_M_IX86)
 #include <emmintrin.h>  // _mm_pause (not <immintrin.h>: every AVX-512 header, a tenth of a user file's parse)
@@ -149,7 +150,7 @@ public:
         std::exception_ptr error;
         {
             std::lock_guard<std::mutex> lock(mutex_);
-            error.swap(error_);
+            std::swap(error, error_);  // (not error.swap: libc++'s exception_ptr has no such member)
         }
         if (error) std::rethrow_exception(error);
 #endif

@@ -812,6 +812,32 @@ TEST_CASE_TEMPLATE("regression: a plate landing flat on several manifolds at onc
         }
 }
 
+TEST_CASE_TEMPLATE("regression: a ball at rest over a thin floor lands on it under strong gravity or a long step", T, float,
+                   double) {
+    // The contact margin counted a body's speed at the start of the step, not what gravity adds
+    // within it (g dt^2): a ball 3 cm over a 2 cm floor fell through it under g = 1000 at 60 Hz
+    // (ending 720 m down), and under g at dt = 0.2 s (20 m down).
+    struct Case {
+        T gravity, dt;
+    };
+    for (const Case k : {Case{T(1000), T(1) / T(60)}, Case{T(9.81), T(0.2)}}) {
+        WorldSettings<T> s;
+        s.gravity = {T(0), -k.gravity, T(0)};
+        World<T> w(s);
+        BodyDef<T> floor;
+        floor.type = BodyType::static_body;
+        floor.position = {T(0), T(-0.01), T(0)};
+        w.create_body(Box<T>(T(5), T(0.01), T(5)), floor);
+        BodyDef<T> d;
+        d.position = {T(0), T(0.08), T(0)};  // 3 cm over the floor's top
+        const BodyId ball = w.create_body(Sphere<T>(T(0.05)), d);
+        for (int i = 0; i < static_cast<int>(T(2) / k.dt); ++i) w.step(k.dt);
+        CAPTURE(k.gravity);
+        CAPTURE(k.dt);
+        CHECK(std::abs(w.body(ball).position().y - T(0.05)) < T(0.01));  // on it, sagging a few mm
+    }
+}
+
 TEST_CASE_TEMPLATE("with restitution 1 a box never bounces higher than it started, over 10 bounces", C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
     World<T> w(C::settings());

@@ -427,7 +427,10 @@ public:
     /// Returns the number of steps taken.
     int update(T seconds);
     /// Fraction (0 … 1) of a step left in the accumulator after update(): render at
-    /// interpolated_transform() to hide the fixed step.
+    /// interpolated_transform() to hide the fixed step. It is the accumulator in steps, so it
+    /// exceeds 1 while steps are owed: after a listener threw out of update(), or after
+    /// set_settings made fixed_time_step smaller (the next update() steps them, up to
+    /// max_steps_per_update); interpolated_transform clamps it.
     T interpolation_factor() const { return accumulator_ / settings_.fixed_time_step; }
     /// The body's pose blended between the last two steps by interpolation_factor().
     Transform<T> interpolated_transform(BodyId id) const;
@@ -529,7 +532,7 @@ private:
     /// How far apart a pair's contacts may begin: the speculative distance plus what the two can
     /// travel in the step.
     T pair_margin(const Body<T>& a, const Body<T>& b, T dt) const {
-        return settings_.speculative_distance + (travel_speed(a) + travel_speed(b)) * dt;
+        return settings_.speculative_distance + (travel_speed(a, dt) + travel_speed(b, dt)) * dt;
     }
     /// dropped: not wanted; apart: rejected by the early-out (its contacts end); kept: both asleep;
     /// remeasured: a mesh pair that barely moved (its contacts re-measured into remeasured_).
@@ -614,7 +617,12 @@ private:
     }
     /// How fast the body can travel this step (its speed within the cap; a velocity whose length
     /// overflows is capped like any other), for boxes and margins that must stay finite.
-    T travel_speed(const Body<T>& b) const { return std::min(length(b.linear_velocity_), speed_limit(b)); }
+    /// The fastest b can move over a step of dt: its speed plus what gravity and its force add
+    /// (without them, a ball at rest 3 cm over a floor under g = 1000, or under g at dt = 0.2 s,
+    /// fell more than the contact margin in its first step and through the floor).
+    T travel_speed(const Body<T>& b, T dt) const {
+        return std::min(length(b.linear_velocity_) + length(free_acceleration(b)) * dt, speed_limit(b));
+    }
     detail::BodyIntegration<T> integration_constants(const Body<T>& b, const detail::SolverMass<T>& s, T h) const;
     void keep_poses_and_update_bounds(T dt);
     void narrow_phase(T dt);
@@ -1347,7 +1355,7 @@ void World<T>::keep_poses_and_update_bounds(T dt) {
                 // (Whatever moves or reshapes a body sets moved_, create_body included.)
                 const bool asleep = b.type_ == BodyType::dynamic && !b.awake_ && length_squared(b.linear_velocity_) == T(0);
                 if (asleep && bounds_asleep_[i] && !b.moved_) continue;
-                const T reach = settings_.speculative_distance + travel_speed(b) * dt;
+                const T reach = settings_.speculative_distance + travel_speed(b, dt) * dt;
                 bounds_[i] = b.world_bounds().expanded(reach);
                 place_bound(i, b);
                 bounds_asleep_[i] = asleep ? 1 : 0;
