@@ -176,23 +176,27 @@ private:
                                               std::memory_order_acquire))
                 continue;
             const std::uint64_t n = count_;
-            // A range that throws still counts as run, and the caller rethrows the first error
-            // once every range is done: thrown out of a worker it ended the process, and thrown
-            // out of the caller it left the workers running on a job being torn down.
-#if XENO_HAS_EXCEPTIONS
-            try {
-                task_(static_cast<std::uint32_t>(n * index / r), static_cast<std::uint32_t>(n * (index + 1) / r));
-            } catch (...) {
-                std::lock_guard<std::mutex> lock(mutex_);
-                if (!error_) error_ = std::current_exception();
-            }
-#else
-            task_(static_cast<std::uint32_t>(n * index / r), static_cast<std::uint32_t>(n * (index + 1) / r));
-#endif
+            run_range(static_cast<std::uint32_t>(n * index / r), static_cast<std::uint32_t>(n * (index + 1) / r));
             ++ran;
             state = state_.load(std::memory_order_acquire);
         }
         if (ran > 0) done_.fetch_add(ran, std::memory_order_acq_rel);
+    }
+
+    /// Runs [begin, end) of the job. A range that throws still counts as run, and the caller
+    /// rethrows the first error once every range is done: thrown out of a worker it ended the
+    /// process, and thrown out of the caller it left the workers running on a job being torn down.
+    void run_range(std::uint32_t begin, std::uint32_t end) {
+#if XENO_HAS_EXCEPTIONS
+        try {
+            task_(begin, end);
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (!error_) error_ = std::current_exception();
+        }
+#else
+        task_(begin, end);
+#endif
     }
 
     /// The range `thread` claims next among `r` given the claimed bits (not all set): the first

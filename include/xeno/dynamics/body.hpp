@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 namespace xeno {
 
@@ -32,6 +33,17 @@ template <class T>
 struct SnapshotAccess;
 
 enum class BodyType : std::uint8_t { static_body, kinematic, dynamic };
+
+namespace detail {
+/// An inertia's inverse: try_inverse, or for one stiff about one axis (diag(167, 1e25, 167) in
+/// float, whose determinant scaled by the largest entry underflows) its rows scaled first. Only
+/// where try_inverse fails, so every other body keeps its bits.
+template <class T>
+std::optional<Mat3<T>> try_inverse_inertia(const Mat3<T>& inertia) {
+    if (std::optional<Mat3<T>> inv = try_inverse(inertia)) return inv;
+    return try_inverse_by_rows(inertia);
+}
+}  // namespace detail
 
 /// What World::set_shape does with a dynamic body's mass: density × the new shape's, or the mass
 /// as it was with the new shape's inertia scaled to it (the density stays, for a later recompute).
@@ -145,8 +157,7 @@ public:
     /// inverse per call, cheaper than storing it in every body (docs/benchmarks.md, memory).
     Mat3<T> inverse_inertia_local() const {
         if (inverse_mass_ == T(0)) return Mat3<T>::zero();
-        if (const std::optional<Mat3<T>> inv = try_inverse(inertia_local_)) return *inv;
-        return try_inverse_by_rows(inertia_local_).value_or(Mat3<T>::zero());  // stiff about one axis
+        return detail::try_inverse_inertia(inertia_local_).value_or(Mat3<T>::zero());
     }
     const Material<T>& material() const { return material_; }
     T linear_damping() const { return linear_damping_; }
@@ -453,8 +464,7 @@ void check_mass_properties(const MassProperties<T>& m, T radius, const char* whe
         const Mat3<T> n{row(0), row(1), row(2)};
         const T asymmetry = std::max(std::abs(n[0].y - n[1].x), std::max(std::abs(n[0].z - n[2].x), std::abs(n[1].z - n[2].y)));
         const T minor2 = n[0].x * n[1].y - n[0].y * n[1].x;
-        std::optional<Mat3<T>> inv = try_inverse(i);
-        if (!inv) inv = try_inverse_by_rows(i);  // as inverse_inertia_local() takes it
+        const std::optional<Mat3<T>> inv = try_inverse_inertia(i);  // as inverse_inertia_local() takes it
         ok = asymmetry <= ScalarTraits<T>::relative_tolerance * T(3) && minor2 > T(0) && determinant(n) > T(0) && inv &&
              is_finite(*inv);
     }

@@ -687,8 +687,7 @@ void SnapshotAccess<T>::check_joint(const World<T>& w, std::size_t k) {
          std::abs(j.motor_speed) <= detail::max_setting_length<T>();
     ok = ok && j.cone_angle >= T(0) && j.cone_angle <= ScalarTraits<T>::pi && std::isfinite(j.swing_impulse) &&
          j.swing_impulse >= T(0) && angular_ok(w, j.swing_impulse, a, b);
-    if (j.type == JointType::hinge || j.type == JointType::swing_twist)
-        ok = ok && detail::angle_limits_ok(j.lower_angle, j.upper_angle);
+    if (!detail::linear_axis(j.type)) ok = ok && detail::angle_limits_ok(j.lower_angle, j.upper_angle);  // as check_limits
     if (ok && (j.type == JointType::hinge || j.type == JointType::prismatic || j.type == JointType::swing_twist))
         ok = detail::unit_vector(j.local_axis_a) && detail::unit_vector(j.local_axis_b) && detail::unit_vector(j.local_ref_a) &&
              detail::unit_vector(j.local_ref_b);

@@ -483,7 +483,7 @@ private:
     void rebuild_joint_pairs();
     Joint<T> make_joint(const JointDef<T>& def, const Body<T>& a, const Body<T>& b, const char* where);
     void set_axis_limit_motor(Joint<T>& j, const JointDef<T>& def, const Body<T>& a, const Body<T>& b, const char* where);
-    static void check_limits(T lower, T upper, bool angle, const char* where);
+    static void check_limits(JointType type, T lower, T upper, const char* where);
     static MassProperties<T> unit_mass(const Shape<T>* shape, const Compound<T>* compound) {
         return shape ? mass_properties(*shape, T(1)) : compound->unit_mass_properties();
     }
@@ -656,9 +656,11 @@ private:
     /// An island's least clock has run its sleep_time (a clock of 0 has not started: with a
     /// sleep_time of 0 every island slept at once, thrown bodies in mid-air included).
     bool clock_done(T clock) const { return clock > T(0) && clock >= settings_.sleep_time; }
+    /// The substeps a step is solved in: the setting in soft-step mode, one in baumgarte mode.
+    T substeps_per_step() const { return static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1); }
     void keep_moving_islands_awake();
     void keep_drifting_islands_awake();
-    T motor_axis_speed(const Joint<T>& j) const;
+    T motor_axis_speed(const Joint<T>& j, const Vec3<T>& axis) const;
     bool motor_turning(const Joint<T>& j, T start_speed) const;
     bool sliding(const Contact<T>& c) const;
     void update_query_tree();
@@ -2248,7 +2250,7 @@ void World<T>::order_solver_bodies_in_space() {
 
 template <class T>
 void World<T>::prepare(T dt) {
-    const T h = dt / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+    const T h = dt / substeps_per_step();
     last_substep_ = h;
     prepare_solver_bodies(h);
     joint_stage(JointStage::prepare, h);
@@ -2272,7 +2274,7 @@ void World<T>::prepare_solver_bodies(T h) {
     order_solver_bodies_in_space();
     // Solver body k + 1 from solver_order_[k], each independently, so in parallel.
     const auto count = static_cast<std::uint32_t>(solver_order_.size());
-    const T step = h * static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+    const T step = h * substeps_per_step();
     solver_bodies_.resize(count + std::size_t(1));
     solver_masses_.resize(count + std::size_t(1));
     solver_slot_.resize(count + std::size_t(1));
@@ -2308,7 +2310,7 @@ void World<T>::prepare_contact_rows(T h) {
     const Softness<T> soft = Softness<T>::make(contact_hertz, settings_.contact_damping_ratio, h);
     const T static_hertz = std::min(contact_hertz * settings_.static_contact_hertz_scale, T(0.25) / h);
     const Softness<T> soft_static = Softness<T>::make(static_hertz, settings_.static_contact_damping_ratio, h);
-    const T step = h * static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+    const T step = h * substeps_per_step();
     // Which contacts get a row (in contact order), then the rows, independently of each other.
     row_contacts_.clear();
     bouncing_rows_.clear();
@@ -2591,7 +2593,7 @@ void World<T>::contact_row(std::uint32_t m, const detail::Softness<T>& soft, con
     // turntable's or a dynamic disc's on a hinge alike. Only where the two bodies turn together
     // (within a tenth), as a rider does with what carries it: bodies tumbling against each other
     // or on the ground took the turning rows too, and dropped piles stepped 15-20 % slower.
-    const T h = step / static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+    const T h = step / substeps_per_step();
     const T spin_sq = std::max(length_squared(va.w), length_squared(vb.w));
     const bool together = length_squared(vb.w - va.w) <= T(0.01) * spin_sq;
     const Vec3<T> slip_a = together && c.round_a == T(0) ? detail::chord_slip(va.w, c.rc_a, h) : Vec3<T>{};
@@ -2680,7 +2682,7 @@ detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, con
     in.gyroscopic = !b.isotropic_;
     in.linear_damping = b.linear_damping_;
     in.angular_damping = b.angular_damping_;
-    in.spin_cap = spin_cap(b, h * static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1));
+    in.spin_cap = spin_cap(b, h * substeps_per_step());
     in.max_speed = speed_limit(b);
     return in;
 }
@@ -2969,12 +2971,12 @@ void World<T>::keep_moving_islands_awake() {
     keep_drifting_islands_awake();
 }
 
-/// The relative speed of a hinge's (rad/s) or a slider's (m/s) bodies about or along its axis.
+/// The relative speed of a hinge's (rad/s) or a slider's (m/s) bodies about or along its axis
+/// (A's axis in world space).
 template <class T>
-T World<T>::motor_axis_speed(const Joint<T>& j) const {
+T World<T>::motor_axis_speed(const Joint<T>& j, const Vec3<T>& axis) const {
     const Body<T>& a = bodies_[j.a.index];
     const Body<T>& b = bodies_[j.b.index];
-    const Vec3<T> axis = rotate(a.orientation_, j.local_axis_a);
     return j.type == JointType::hinge ? dot(b.angular_velocity_ - a.angular_velocity_, axis)
                                       : dot(b.linear_velocity_ - a.linear_velocity_, axis);
 }
@@ -2988,14 +2990,14 @@ T World<T>::motor_axis_speed(const Joint<T>& j) const {
 template <class T>
 bool World<T>::motor_turning(const Joint<T>& j, T start_speed) const {
     if (!joint_active(j) || !j.enable_motor || j.motor_speed == T(0) || !(j.max_motor_torque > T(0))) return false;
-    const T speed = motor_axis_speed(j);
-    if (speed * j.motor_speed >= T(0.5) * j.motor_speed * j.motor_speed) return true;
     const Body<T>& a = bodies_[j.a.index];
     const Body<T>& b = bodies_[j.b.index];
     const Vec3<T> axis = rotate(a.orientation_, j.local_axis_a);
+    const T speed = motor_axis_speed(j, axis);
+    if (speed * j.motor_speed >= T(0.5) * j.motor_speed * j.motor_speed) return true;
     const T response = j.type == JointType::hinge ? dot(axis, (a.inverse_inertia_world() + b.inverse_inertia_world()) * axis)
                                                   : a.inverse_mass_ + b.inverse_mass_;
-    const T dt = last_substep_ * static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+    const T dt = last_substep_ * substeps_per_step();
     const T gained = j.motor_speed > T(0) ? speed - start_speed : start_speed - speed;
     return gained > T(0.01) * j.max_motor_torque * dt * response;
 }

@@ -115,7 +115,7 @@ void World<T>::move_kinematic(BodyId id, const Vec3<T>& position, const Quat<T>&
     const T sin_half = length(axis_sin);
     Vec3<T> w = Vec3<T>::zero();
     if (sin_half > T(0)) {
-        const T n = static_cast<T>(settings_.solver == SolverMode::soft_step ? settings_.substeps : 1);
+        const T n = substeps_per_step();
         const T angle = T(2) * std::atan2(sin_half, turn.w);
         const T h = dt / n;
         w = axis_sin * ((T(2) / h) * std::tan(angle / (T(2) * n)) / sin_half);

@@ -27,7 +27,7 @@ void World<T>::set_axis_limit_motor(Joint<T>& j, const JointDef<T>& def, const B
     const bool slider = def.type == JointType::prismatic;
     const T lower = slider ? def.lower_translation : def.lower_angle;
     const T upper = slider ? def.upper_translation : def.upper_angle;
-    check_limits(lower, upper, !slider, where);  // kept, and restored from snapshots, even while the limit is off
+    check_limits(def.type, lower, upper, where);  // kept, and restored from snapshots, even while the limit is off
     if (def.type == JointType::swing_twist) {
         if (!(def.cone_angle >= T(0) && def.cone_angle <= ScalarTraits<T>::pi))
             detail::report_invalid(where, "cone_angle must be within [0, pi] rad", static_cast<double>(def.cone_angle));
@@ -47,7 +47,7 @@ void World<T>::set_axis_limit_motor(Joint<T>& j, const JointDef<T>& def, const B
 }
 
 template <class T>
-void World<T>::check_limits(T lower, T upper, bool angle, const char* where) {
+void World<T>::check_limits(JointType type, T lower, T upper, const char* where) {
     detail::require_finite(lower, where, "lower limit");
     detail::require_finite(upper, where, "upper limit");
     if (lower > upper)
@@ -55,7 +55,7 @@ void World<T>::check_limits(T lower, T upper, bool angle, const char* where) {
     // An angle is measured in (-pi, pi] (Joint::hinge_angle), so a limit beyond pi is never
     // reached where the user meant it: [-4, 4] let an arm turn freely, and [0, 3.5] read the
     // angle past pi as -3.1 and threw the arm forwards every turn (1 rad/s became 9.2).
-    if (angle && !detail::angle_limits_ok(lower, upper))
+    if (!detail::linear_axis(type) && !detail::angle_limits_ok(lower, upper))
         detail::report_invalid(where, "angle limits must be within [-pi, pi] rad; the larger magnitude",
                                static_cast<double>(std::max(-lower, upper)));
 }
@@ -176,7 +176,7 @@ void World<T>::set_joint_limits(JointId id, bool enable, T lower, T upper) {
     if (j.type != JointType::hinge && j.type != JointType::prismatic && j.type != JointType::swing_twist)
         detail::report_invalid(where, "only hinges, sliders and swing-twist joints have limits; joint type",
                                static_cast<double>(j.type));
-    check_limits(lower, upper, j.type != JointType::prismatic, where);
+    check_limits(j.type, lower, upper, where);
     if (j.type == JointType::swing_twist && !enable)
         detail::report_invalid(where, "a swing-twist joint's twist limit cannot be disabled (use a ball joint); enable", 0.0);
     j.enable_limit = enable;
@@ -248,7 +248,7 @@ void World<T>::prepare_joints(T h) {
         c.ref_b0 = rotate(b.orientation_, j.local_ref_b);
         c.qa0 = a.orientation_;
         c.qb0 = b.orientation_;
-        if (j.enable_motor) c.motor_start_speed = motor_axis_speed(j);
+        if (j.enable_motor) c.motor_start_speed = motor_axis_speed(j, c.axis_a0);
         c.softness = settings_.solver == SolverMode::soft_step ? soft : detail::Softness<T>::make(T(0.25) / h, T(1), h);
         c.limit_softness = settings_.solver == SolverMode::soft_step ? limit_soft : c.softness;
         c.max_bias_speed = settings_.max_linear_speed;
