@@ -165,6 +165,58 @@ TEST_CASE_TEMPLATE("a box thrown at a sleeping pile moves it as it moves an awak
     CHECK(std::abs(on - off) <= T(0.1) * off + T(0.01));
 }
 
+namespace {
+
+struct ChainResult {
+    bool asleep_before = false;  // the far box slept when the striker was fired
+    double deepest = 0;          // m: the middle box's worst overlap with the far box
+    double far_speed = 0;        // m/s: the far box's peak speed along x
+};
+
+// Unit boxes on the floor: the far one settled 1 cm beyond where the middle one is then created
+// at rest (awake), and a third fired at the middle one from 1 cm away at 10 m/s.
+template <class T>
+ChainResult strike_beside_sleeper(bool sleeping) {
+    World<T> w(with_sleeping<T>(sleeping));
+    add_floor(w);
+    const Box<T> cube(T(0.5), T(0.5), T(0.5));
+    BodyDef<T> d;
+    d.position = {T(1.01), T(0.5), T(0)};
+    const BodyId far = w.create_body(cube, d);
+    test::simulate(w, T(2));
+    ChainResult r;
+    r.asleep_before = !w.body(far).awake();
+    d.position = {T(0), T(0.5), T(0)};
+    const BodyId middle = w.create_body(cube, d);
+    d.position = {T(-1.01), T(0.5), T(0)};
+    d.linear_velocity = {T(10), T(0), T(0)};
+    w.create_body(cube, d);
+    test::simulate(w, T(1), [&](int) {
+        r.deepest = std::max(r.deepest, 1.0 - double(w.body(far).position().x - w.body(middle).position().x));
+        r.far_speed = std::max(r.far_speed, double(w.body(far).linear_velocity().x));
+    });
+    return r;
+}
+
+}  // namespace
+
+// The wake test ran on the velocities before the solve: the middle box, at rest, was no threat
+// to the sleeper, the sleeper stayed out of the solve, and the middle box, struck, went 7 cm into
+// it before it woke. Now a group of active bodies in contact wakes what its fastest point could
+// reach at twice its speed.
+TEST_CASE_TEMPLATE("regression: a box struck at rest 1 cm from a sleeper pushes it as if nothing slept", T, float, double) {
+    const ChainResult on = strike_beside_sleeper<T>(true);
+    const ChainResult off = strike_beside_sleeper<T>(false);
+    CHECK(on.asleep_before);
+    CHECK_FALSE(off.asleep_before);
+    const double slop = double(WorldSettings<T>{}.linear_slop);
+    CHECK(off.deepest <= slop);
+    CHECK(on.deepest <= slop);
+    // Equal masses, no restitution: the far box leaves at a share of the striker's 10 m/s.
+    CHECK(off.far_speed > 2.0);
+    CHECK(std::abs(on.far_speed - off.far_speed) <= 0.02 * off.far_speed);
+}
+
 TEST_CASE_TEMPLATE("pairs that sleep report no persisted events", T, float, double) {
     World<T> w;  // defaults: sleeping on
     add_floor(w);
