@@ -516,8 +516,9 @@ private:
         std::vector<std::uint32_t> parts;
     };
     void mesh_manifolds(const ProxyPair& pair, T margin, T dt, MeshManifolds& out) const;
-    SpeculativeSweep<T> speculative_sweep(const Body<T>& a, std::uint32_t ca, const Body<T>& b, T dt,
+    SpeculativeSweep<T> speculative_sweep(const Body<T>& a, std::uint32_t ca, const Body<T>& b, std::uint32_t cb, T dt,
                                           bool any_speed = false) const;
+    T turning_radius(const Body<T>& body, std::uint32_t child) const;
     /// The contacts of a pair with a mesh side from its manifolds, matched to last step's by the
     /// convex part and the normal.
     void merge_mesh_pair(const ProxyPair& pair, T margin, std::size_t old_begin, std::size_t old_end, const MeshManifolds& fresh,
@@ -787,6 +788,7 @@ private:
     std::vector<std::uint32_t> mesh_jobs_;   ///< several workers: the pairs of kind mesh, in pair order
     std::vector<MeshManifolds> mesh_job_manifolds_;  ///< several workers: the manifolds of each of mesh_jobs_
     std::vector<std::uint8_t> old_taken_;            ///< last step's contacts of a mesh pair already matched (pass 3)
+    std::vector<std::uint32_t> vetoed_bodies_;       ///< merge: the bodies of pairs the filter now vetoes, to wake
     std::vector<PathContact> path_;                  ///< per contact: path_of (drop_out_of_reach)
     std::vector<std::uint8_t> dropped_;              ///< per contact: 1 = out of reach (drop_out_of_reach)
     std::vector<std::uint32_t> row_contacts_;        ///< per contact row: its contact (prepare)
@@ -1618,14 +1620,19 @@ void World<T>::merge_contacts(T dt) {
         // A pair the contact filter now vetoes: a sleeper it held wakes, or it hung in the air.
         const bool vetoed = work.kind == PairKind::dropped;
         for (; old < work.old_end; ++old) {  // dropped, or parts that no longer exist
-            if (vetoed && contacts_[old].touching)
-                for (const std::uint32_t i : {pairs_[k].a, pairs_[k].b})
-                    if (bodies_[i].type_ == BodyType::dynamic && bodies_[i].alive_) bodies_[i].wake();
+            if (vetoed && contacts_[old].touching) vetoed_bodies_.insert(vetoed_bodies_.end(), {pairs_[k].a, pairs_[k].b});
             end_contact(contacts_[old]);
         }
     }
     if (parallel) copy_placed_runs(placed);
     while (old < contacts_.size()) end_contact(contacts_[old++]);
+    // Woken after every pair is collided: a woken body's margin grows by what gravity adds over
+    // the step (travel_speed), and one worker collides pairs here, in the merge, where several
+    // collided them before it; waking in the loop gave later pairs of the body a larger margin
+    // on one worker only, and other bits.
+    for (const std::uint32_t i : vetoed_bodies_)
+        if (bodies_[i].type_ == BodyType::dynamic && bodies_[i].alive_) bodies_[i].wake();
+    vetoed_bodies_.clear();
 }
 
 /// Several workers: every run the merge placed (narrow_phase) copied into next_contacts_, which
@@ -1757,6 +1764,17 @@ typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, s
     return PartsContact::made;
 }
 
+/// m: how far the surface of the body's part `child` can swing as the body turns: the bounding
+/// radius, or for a ball only its centre's offset from the body's centre (a ball turns without
+/// moving its surface: a ball rolling at 10 m/s past a floor's corner, never nearer than 2 cm,
+/// was not swept for turning by more than speculative_distance, kept a manifold with the corner
+/// and was thrown up at 3-4 m/s).
+template <class T>
+T World<T>::turning_radius(const Body<T>& body, std::uint32_t child) const {
+    return detail::is_sphere(body, child) ? length(body.child_transform(child).position - body.position_)
+                                          : body.bounding_radius();
+}
+
 // Speculative contacts out of reach (docs/collision.md). A pair's margin grows with both bodies'
 // travel, so a fast body has speculative manifolds with everything within its travel: the tiles
 // beside the one it lands on, the border of a mesh platform, each along the normal of the
@@ -1771,7 +1789,7 @@ typename World<T>::PartsContact World<T>::collide_parts(const ProxyPair& pair, s
 // (collide_mesh), a convex pair with a static body is removed after the narrow phase when
 // nothing can turn the body towards it (drop_out_of_reach). Pairs of moving bodies keep theirs.
 template <class T>
-SpeculativeSweep<T> World<T>::speculative_sweep(const Body<T>& a, std::uint32_t ca, const Body<T>& b, T dt,
+SpeculativeSweep<T> World<T>::speculative_sweep(const Body<T>& a, std::uint32_t ca, const Body<T>& b, std::uint32_t cb, T dt,
                                                 bool any_speed) const {
     // Each velocity held to its body's cap, as pair_margin holds it (a kinematic body may be set
     // to any finite speed; the solver caps it).
@@ -1782,7 +1800,8 @@ SpeculativeSweep<T> World<T>::speculative_sweep(const Body<T>& a, std::uint32_t 
     const Vec3<T> move = (capped(a) - capped(b)) * dt;
     const T radius = xeno::bounding_radius(a.child_shape(ca)), distance = length(move);
     if (!is_finite(move)) return {};
-    const T turn = (length(a.angular_velocity_) * a.bounding_radius() + length(b.angular_velocity_) * b.bounding_radius()) * dt;
+    const T turn =
+        (length(a.angular_velocity_) * turning_radius(a, ca) + length(b.angular_velocity_) * turning_radius(b, cb)) * dt;
     const T near = settings_.speculative_distance;
     if (!(distance > T(0.5) * radius || (any_speed && distance > T(0))) || !(turn <= near)) return {};
     return {move * ((distance + near) / distance), near, settings_.linear_slop};
@@ -1814,7 +1833,7 @@ typename World<T>::PathContact World<T>::path_of(std::uint32_t m, T dt) const {
     if (a.mesh() || b.mesh()) return out;  // a mesh's manifolds turn the body now; it dropped its triangles beside the path
     for (int i = 0; i < c.manifold.count; ++i)
         if (!(c.manifold.points[static_cast<std::size_t>(i)].depth < -settings_.speculative_distance)) return out;
-    const SpeculativeSweep<T> sweep = speculative_sweep(a, c.child_a, b, dt, true);
+    const SpeculativeSweep<T> sweep = speculative_sweep(a, c.child_a, b, c.child_b, dt, true);
     if (!sweep.active()) return out;
     const std::optional<ShapeCastHit<T>> hit =
         xeno::shape_cast(a.child_shape(c.child_a), a.child_transform(c.child_a), sweep.move, b.child_shape(c.child_b),
@@ -1901,9 +1920,7 @@ ContactManifold<T> World<T>::at_first_touch(const Body<T>& a, std::uint32_t ca, 
     // The sweep leaves turning out: only while turning moves the surfaces by less than a quarter
     // of the gap (a ball turns without moving its surface; what it strikes may spin).
     const auto turning = [&](const Body<T>& body, std::uint32_t child) {
-        const T reach = detail::is_sphere(body, child) ? length(body.child_transform(child).position - body.position_)
-                                                       : body.bounding_radius();
-        return length(body.angular_velocity_) * reach * horizon;
+        return length(body.angular_velocity_) * turning_radius(body, child) * horizon;
     };
     if (!(turning(a, ca) + turning(b, cb) <= T(0.25) * gap)) return now;
     const std::optional<ShapeCastHit<T>> hit = xeno::shape_cast(a.child_shape(ca), pose_a, relative, b.child_shape(cb), pose_b);
@@ -2063,7 +2080,7 @@ void World<T>::mesh_manifolds(const ProxyPair& pair, T margin, T dt, MeshManifol
     // beside its path. Asked only of a body fast enough to sweep (jointed() reads every joint).
     bool held = false, asked = false;
     for (std::uint32_t part = 0; part < other.child_count(); ++part) {
-        SpeculativeSweep<T> sweep = speculative_sweep(other, part, mesh, dt);
+        SpeculativeSweep<T> sweep = speculative_sweep(other, part, mesh, 0, dt);
         if (sweep.active() && !asked) held = jointed(a.mesh() ? pair.b : pair.a), asked = true;
         if (held) sweep = {};
         collide_mesh(*mesh.mesh(), mesh.transform(), other.child_shape(part), other.child_transform(part), margin,
