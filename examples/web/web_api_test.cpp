@@ -13,6 +13,22 @@
 #include <cmath>
 #include <string>
 
+namespace {
+
+int scene(const std::string& name) {
+    for (int s = 0; s < xw_scene_count(); ++s)
+        if (xw_scene_name(s) == name) return s;
+    return -1;
+}
+
+bool finite_position(int precision, int body) {
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(xw_body_position(precision, body, k))) return false;
+    return true;
+}
+
+}  // namespace
+
 TEST_CASE("every scene loads, steps and draws in float, double and both") {
     REQUIRE(xw_scene_count() >= 25);
     for (int s = 0; s < xw_scene_count(); ++s) {
@@ -81,4 +97,77 @@ TEST_CASE("bad arguments are refused") {
     xw_drag(NAN, 0, 0);
     CHECK(xw_draw(0, 0) == 0);  // float not loaded
     CHECK(xw_benchmark(0, 1, 0) == -1);
+}
+
+// The WebAssembly module is built without exceptions: a throw from the library ends the page, so
+// every call below must be refused (or cut) at the interface, not thrown on inside.
+TEST_CASE("a pick from an origin that is not finite or beyond +-1e6 m is refused; any finite direction picks") {
+    const int column = scene("column");
+    REQUIRE(column >= 0);
+    for (int precision = 0; precision <= 2; ++precision) {
+        CAPTURE(precision);
+        REQUIRE(xw_load(column, precision) == 0);
+        xw_step(30);
+        CHECK(xw_pick(NAN, 9.5, 10, 0, 0, -1) == 0);
+        CHECK(xw_pick(0, INFINITY, 10, 0, 0, -1) == 0);
+        CHECK(xw_pick(1e300, 9.5, 10, 0, 0, -1) == 0);  // inf once float
+        CHECK(xw_pick(0, 9.5, 2e6, 0, 0, -1) == 0);
+        CHECK(xw_pick(0, 9.5, 10, 0, 0, -INFINITY) == 0);
+        CHECK(xw_grabbed_body() == -1);
+        // |d|² subnormal (normalising it gave no unit vector) and |d|² overflowing: both still a direction.
+        CHECK(xw_pick(0, 9.5, 10, 0, 0, -1e-161) == 1);
+        xw_release();
+        CHECK(xw_pick(0, 9.5, 10, 0, 0, -1e200) == 1);
+        xw_release();
+    }
+}
+
+TEST_CASE("a drag target beyond +-1e6 m is refused in every precision, and one at the bound steps") {
+    const int column = scene("column");
+    REQUIRE(column >= 0);
+    for (int precision = 0; precision <= 2; ++precision) {
+        CAPTURE(precision);
+        REQUIRE(xw_load(column, precision) == 0);
+        xw_step(30);
+        REQUIRE(xw_pick(0, 9.5, 10, 0, 0, -1) == 1);
+        const int body = xw_grabbed_body();
+        const double target[3] = {xw_grab_point(0), xw_grab_point(1), xw_grab_point(2)};
+        const int shown = precision == 0 ? 0 : 1;
+        // inf once float; finite in double, but not the velocity that reaches it in a step; beyond 1e6 m.
+        for (const double far : {1e300, -1e308, 2e6}) {
+            CAPTURE(far);
+            xw_drag(far, far, far);
+            for (int k = 0; k < 3; ++k) CHECK(xw_grab_point(k) == target[k]);
+            CHECK_NOTHROW(xw_step(1));
+            CHECK(finite_position(shown, body));
+        }
+        xw_drag(1e6, -1e6, 1e6);
+        CHECK(xw_grab_point(0) == 1e6);
+        xw_step(2);
+        CHECK(finite_position(shown, body));
+        xw_release();
+    }
+}
+
+TEST_CASE("a negative step count does nothing; more than 600 steps a call are cut to 600") {
+    const int column = scene("column");
+    REQUIRE(column >= 0);
+    REQUIRE(xw_load(column, 2) == 0);
+    xw_step(-1000);
+    CHECK(xw_time() == 0);
+    xw_step(1000);
+    CHECK(xw_time() == 10);  // 600 steps of 1/60 s
+    CHECK(xw_benchmark(column, 0, 601) == -1);
+    CHECK(xw_benchmark(column, 1, -5) == -1);
+    CHECK(xw_benchmark(column, 0, 600) > 0);
+}
+
+TEST_CASE("a stat of an unknown precision or kind is 0") {
+    REQUIRE(xw_load(scene("column"), 1) == 0);
+    xw_step(1);
+    CHECK(xw_stat(1, 0) == 10);
+    CHECK(xw_stat(5, 0) == 0);
+    CHECK(xw_stat(-1, 0) == 0);
+    CHECK(xw_stat(1, 3) == 0);
+    CHECK(xw_stat(0, 0) == 0);  // float not loaded
 }

@@ -74,12 +74,35 @@ struct Page {
     Side<float> f32;
     Side<double> f64;
     double step_ms = 0;  // the last xw_step's mean, per step of every world stepped
-    int steps = 0;
+    double steps = 0;    // a count exact to 2^53: an int overflowed after 3.6 million calls of 600
     std::string error;
     std::vector<float> empty;
 };
 
 Page page;
+
+/// The most steps one xw_step or xw_benchmark call takes (10 s of scene time): the module runs on
+/// the page's thread, so a call without a cap could hold the tab for hours.
+constexpr int max_steps_per_call = 600;
+
+/// The largest coordinate (m) a pick's origin or a drag's target may have, in every precision so
+/// float, double and both accept the same calls: the float world's largest size. Beyond it a
+/// double converts to inf in float, or the grab's velocity (distance × 60 /s) overflows.
+constexpr double max_coordinate = xeno::ScalarTraits<float>::max_size;
+
+bool within_page(double x, double y, double z) {
+    // Written so NaN fails too.
+    return std::abs(x) <= max_coordinate && std::abs(y) <= max_coordinate && std::abs(z) <= max_coordinate;
+}
+
+/// The unit vector along d, or nothing when d is zero or not finite. Scaled to its largest
+/// component first: |d|² of a finite d can overflow (1e200) or be subnormal (1e-161), and the
+/// quotient then is no unit vector, which World::raycast throws on.
+std::optional<Vec3<double>> unit(const Vec3<double>& d) {
+    const double largest = max_component(abs(d));
+    if (!is_finite(d) || !(largest > 0)) return std::nullopt;
+    return try_normalized(d / largest);
+}
 
 template <class T>
 void release(Side<T>& side) {
@@ -182,6 +205,7 @@ int xw_load(int scene, int precision) {
 }
 
 void xw_step(int n) {
+    n = std::clamp(n, 0, max_steps_per_call);
     const auto start = std::chrono::steady_clock::now();
     for (int i = 0; i < n; ++i) {
         step(page.f32);
@@ -227,7 +251,12 @@ float* xw_lines(int precision) {
     return v.data();
 }
 
-int xw_stat(int precision, int what) { return precision == 0 ? count(page.f32, what) : count(page.f64, what); }
+int xw_stat(int precision, int what) {
+    if (what < 0 || what > 2) return 0;
+    if (precision == 0) return count(page.f32, what);
+    if (precision == 1) return count(page.f64, what);
+    return 0;
+}
 
 double xw_max_difference() {
     if (!page.f32.run || !page.f64.run) return 0;
@@ -249,9 +278,9 @@ double xw_camera(int k) {
 }
 
 int xw_pick(double ox, double oy, double oz, double dx, double dy, double dz) {
-    const xeno::Vec3<double> origin{ox, oy, oz}, direction{dx, dy, dz};
-    if (!std::isfinite(xeno::length(direction)) || !(xeno::length(direction) > 0)) return 0;
-    const xeno::Ray<double> ray{origin, xeno::normalized(direction), 1000.0};
+    const std::optional<xeno::Vec3<double>> direction = unit({dx, dy, dz});
+    if (!within_page(ox, oy, oz) || !direction) return 0;
+    const xeno::Ray<double> ray{{ox, oy, oz}, *direction, 1000.0};
     std::optional<xeno::BodyId> body;
     xeno::Vec3<double> point;
     if (page.f64.run) {
@@ -274,7 +303,7 @@ double xw_grab_point(int k) {
 }
 
 void xw_drag(double x, double y, double z) {
-    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) return;
+    if (!within_page(x, y, z)) return;
     page.f32.grab_target = xeno::Vec3<float>(xeno::Vec3<double>{x, y, z});
     page.f64.grab_target = {x, y, z};
 }
@@ -303,7 +332,8 @@ double xw_body_position(int precision, int index, int k) {
 }
 
 double xw_benchmark(int scene, int precision, int steps) {
-    if (scene < 0 || scene >= xw_scene_count() || precision < 0 || precision > 1 || steps <= 0) return -1;
+    if (scene < 0 || scene >= xw_scene_count() || precision < 0 || precision > 1 || steps <= 0 || steps > max_steps_per_call)
+        return -1;
     const std::string& name = xeno::scenes::scene_list()[static_cast<std::size_t>(scene)].first;
     return precision == 0 ? time_steps<float>(name, steps) : time_steps<double>(name, steps);
 }

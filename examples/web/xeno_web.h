@@ -5,6 +5,9 @@
 // arguments: 0 float, 1 double (xw_load also takes 2: both worlds side by side). Stats: 0 dynamic
 // bodies, 1 contacts, 2 awake bodies. Arrays: triangles are 10 floats a vertex (position, normal,
 // RGBA), lines 7 (position, RGBA); pointers stay valid until the next xw_draw of that precision.
+// Bad arguments are refused, never thrown on (docs/web.md, "What is in it"): a pick's origin and
+// a drag's target must be finite and within +-1e6 m; xw_step takes 0 to 600 steps a call (a
+// larger count is cut to 600), xw_benchmark 1 to 600 (else -1).
 #pragma once
 
 #ifdef __EMSCRIPTEN__
