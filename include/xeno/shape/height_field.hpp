@@ -242,19 +242,28 @@ void HeightField<T>::for_each_triangle(const Aabb<T>& box, F&& f, Keep keep) con
 // Cells along the ray's path would be the fast way (a 2D DDA); the cells under the ray's box are
 // simpler and exact, and rays in games are short or vertical. A long slanted ray over a large
 // field visits many cells: bounded by the cells under its box.
+//
+// The boxes are grown by a thousandth of a spacing, and by 64 ε of the ray's reach from the
+// origin (the rounding of the path's ends), so a ray down a grid line or through a sample takes
+// in the cells on both sides: detail::ray_triangle is watertight only among the triangles it sees.
 template <class T>
 std::optional<std::pair<RayHit<T>, std::uint32_t>> HeightField<T>::raycast(const Ray<T>& ray) const {
     Ray<T> r = ray;
-    const std::optional<T> enter = xeno::raycast(bounds_.expanded(spacing_ * T(1e-3)), r);
+    const T extent = length(bounds_.max - bounds_.min) + spacing_;
+    const T place = std::max({std::abs(r.origin.x), std::abs(r.origin.y), std::abs(r.origin.z)});
+    const T pad = spacing_ * T(1e-3) + T(64) * ScalarTraits<T>::epsilon * (place + extent);
+    const std::optional<T> enter = xeno::raycast(bounds_.expanded(pad), r);
     if (!enter) return std::nullopt;
     // Clip the ray to the field's box so its own box is finite.
     Aabb<T> path;
     path.merge(r.origin + r.direction * *enter);
-    const T reach = std::min(r.max_distance, *enter + length(bounds_.max - bounds_.min) + spacing_);
+    const T reach = std::min(r.max_distance, *enter + extent);
     path.merge(r.origin + r.direction * reach);
+    const detail::RayFrame<T> frame(ray);
     std::optional<std::pair<RayHit<T>, std::uint32_t>> best;
-    for_each_triangle(path.expanded(spacing_ * T(1e-3)), [&](std::uint32_t k, const MeshTriangle<T>& t) {
-        if (const std::optional<T> d = detail::ray_triangle(r, t.v[0], t.v[1], t.v[2])) {
+    path = path.expanded(pad + T(64) * ScalarTraits<T>::epsilon * *enter);
+    for_each_triangle(path, [&](std::uint32_t k, const MeshTriangle<T>& t) {
+        if (const std::optional<T> d = detail::ray_triangle(frame, r.max_distance, t.v[0], t.v[1], t.v[2])) {
             r.max_distance = *d;
             RayHit<T> hit;
             hit.distance = *d;

@@ -20,11 +20,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <numeric>
 #include <optional>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 namespace xeno {
@@ -308,31 +310,108 @@ void TriangleMesh<T>::for_each_triangle(const Aabb<T>& box, F&& f, Keep keep) co
 
 namespace detail {
 
-/// Ray against one triangle from either side (Möller–Trumbore): the distance, if it hits within
-/// [0, max_distance].
+/// A ray's own frame, after Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection"
+/// (JCGT 2(1), 2013): the axes permuted so that the ray's largest component is z, x and y sheared
+/// so that the ray runs down the z axis from the origin, z scaled to distance along the ray. A
+/// point's x, y say where it lies across the ray; each corner is placed once, the same for every
+/// triangle that shares it.
 template <class T>
-std::optional<T> ray_triangle(const Ray<T>& ray, const Vec3<T>& a, const Vec3<T>& b, const Vec3<T>& c) {
-    const Vec3<T> e1 = b - a, e2 = c - a;
-    const Vec3<T> p = cross(ray.direction, e2);
-    const T det = dot(e1, p);
-    if (det == T(0)) return std::nullopt;  // parallel to the plane
-    const T inv = T(1) / det;
-    const Vec3<T> s = ray.origin - a;
-    const T u = dot(s, p) * inv;
-    if (u < T(0) || u > T(1)) return std::nullopt;
-    const Vec3<T> q = cross(s, e1);
-    const T v = dot(ray.direction, q) * inv;
-    if (v < T(0) || u + v > T(1)) return std::nullopt;
-    const T t = dot(e2, q) * inv;
-    if (!(t >= T(0) && t <= ray.max_distance)) return std::nullopt;
+struct RayFrame {
+    using Axis = T Vec3<T>::*;
+    Vec3<T> origin;
+    Axis x, y, z;  ///< the world axes that become x, y, z
+    T sx, sy, sz;  ///< the shear and the scale
+
+    explicit RayFrame(const Ray<T>& ray) : origin(ray.origin) {
+        const Axis axes[3] = {&Vec3<T>::x, &Vec3<T>::y, &Vec3<T>::z};
+        const Vec3<T>& d = ray.direction;
+        const T ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
+        const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+        x = axes[(kz + 1) % 3], y = axes[(kz + 2) % 3], z = axes[kz];
+        if (d.*z < T(0)) std::swap(x, y);  // keeps the winding (the paper's; no side is culled here)
+        sx = d.*x / d.*z, sy = d.*y / d.*z, sz = T(1) / d.*z;
+    }
+    Vec3<T> apply(const Vec3<T>& p) const {
+        const Vec3<T> a = p - origin;
+        return {a.*x - sx * a.*z, a.*y - sy * a.*z, sz * a.*z};
+    }
+};
+
+/// Which side of the edge p → q (ray frame) the ray passes, as twice the signed area of the ray's
+/// point and the edge: the neighbour across the edge runs q → p and gets exactly the negative, so
+/// no ray passes outside both. A float value of exactly 0 is worked out again in double (a float
+/// product is exact there), as the paper does.
+template <class T>
+T edge_side(const Vec3<T>& p, const Vec3<T>& q) {
+    const T e = p.x * q.y - p.y * q.x;
+    if constexpr (std::is_same_v<T, float>)
+        if (e == 0.f) return static_cast<float>(double(p.x) * double(q.y) - double(p.y) * double(q.x));
+    return e;
+}
+
+/// Ray (as a RayFrame) against one triangle from either side, watertight: two triangles sharing
+/// an edge or a corner leave no gap between them for rounding to let a ray through (an edge or
+/// corner hit counts for both). The distance, if it hits within [0, max_distance].
+template <class T>
+std::optional<T> ray_triangle(const RayFrame<T>& f, T max_distance, const Vec3<T>& a, const Vec3<T>& b, const Vec3<T>& c) {
+    const Vec3<T> p = f.apply(a), q = f.apply(b), r = f.apply(c);
+    const T u = edge_side(r, q), v = edge_side(p, r), w = edge_side(q, p);  // the weights of a, b, c
+    if ((u < T(0) || v < T(0) || w < T(0)) && (u > T(0) || v > T(0) || w > T(0))) return std::nullopt;
+    const T det = u + v + w;
+    if (det == T(0)) return std::nullopt;  // seen edge-on
+    const T t = (u * p.z + v * q.z + w * r.z) / det;
+    if (!(t >= T(0) && t <= max_distance)) return std::nullopt;
     return t;
 }
+
+/// Ray against one triangle from either side: the distance, if it hits within [0, max_distance].
+template <class T>
+std::optional<T> ray_triangle(const Ray<T>& ray, const Vec3<T>& a, const Vec3<T>& b, const Vec3<T>& c) {
+    return ray_triangle(RayFrame<T>(ray), ray.max_distance, a, b, c);
+}
+
+/// A ray prepared for the hierarchy walk: slab tests by its reciprocal direction against node
+/// boxes grown by `pad`, 32 ε of the farthest the mesh's box reaches from the ray's origin along
+/// an axis. That is more than the slab test's rounding and ray_triangle's (each a few ε of that
+/// distance), so the walk never culls a triangle the test would hit (an edge-grazing ray missed
+/// the unpadded box of its triangle).
+template <class T>
+struct RaySlabs {
+    Vec3<T> origin, inverse;
+    T pad;
+
+    RaySlabs(const Ray<T>& ray, const Aabb<T>& all) : origin(ray.origin) {
+        const Vec3<T>& d = ray.direction;
+        // + 0 turns −0 into +0: along an axis the ray is square to, +∞ (see slab).
+        inverse = {T(1) / (d.x + T(0)), T(1) / (d.y + T(0)), T(1) / (d.z + T(0))};
+        pad = T(32) * ScalarTraits<T>::epsilon * max_component(max(abs(all.min - origin), abs(all.max - origin)));
+    }
+    /// Whether the ray meets the grown box within [0, max_distance].
+    bool meets(const Aabb<T>& box, T max_distance) const {
+        T enter = T(0), exit = max_distance;
+        return slab(box.min.x, box.max.x, origin.x, inverse.x, enter, exit) &&
+               slab(box.min.y, box.max.y, origin.y, inverse.y, enter, exit) &&
+               slab(box.min.z, box.max.z, origin.z, inverse.z, enter, exit);
+    }
+    /// Narrows [enter, exit] to one axis's slab; false once it is empty. A ray square to the axis
+    /// (inv = +∞) gives t0 = −∞ and t1 = +∞ inside the slab, both +∞ or both −∞ outside, and
+    /// 0 × ∞ = NaN on a face, which std::max and std::min with it second leave out.
+    bool slab(T lo, T hi, T o, T inv, T& enter, T& exit) const {
+        T t0 = (lo - pad - o) * inv, t1 = (hi + pad - o) * inv;
+        if (t0 > t1) std::swap(t0, t1);
+        enter = std::max(enter, t0);
+        exit = std::min(exit, t1);
+        return enter <= exit;
+    }
+};
 
 }  // namespace detail
 
 template <class T>
 std::optional<std::pair<RayHit<T>, std::uint32_t>> TriangleMesh<T>::raycast(const Ray<T>& ray) const {
     Ray<T> r = ray;
+    const detail::RayFrame<T> frame(ray);
+    const detail::RaySlabs<T> slabs(ray, nodes_[0].box);
     std::optional<std::pair<RayHit<T>, std::uint32_t>> best;
     std::uint32_t stack[64];
     int top = 0;
@@ -340,11 +419,11 @@ std::optional<std::pair<RayHit<T>, std::uint32_t>> TriangleMesh<T>::raycast(cons
     while (top > 0) {
         const std::uint32_t at = stack[--top];
         const detail::BvhNode<T>& node = nodes_[at];
-        if (!xeno::raycast(node.box, r)) continue;
+        if (!slabs.meets(node.box, r.max_distance)) continue;
         if (node.count > 0) {
             for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
                 const MeshTriangle<T> t = triangle(k);
-                if (const std::optional<T> d = detail::ray_triangle(r, t.v[0], t.v[1], t.v[2])) {
+                if (const std::optional<T> d = detail::ray_triangle(frame, r.max_distance, t.v[0], t.v[1], t.v[2])) {
                     r.max_distance = *d;  // only nearer hits from now on
                     RayHit<T> hit;
                     hit.distance = *d;
