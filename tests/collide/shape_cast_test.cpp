@@ -297,3 +297,62 @@ TEST_CASE_TEMPLATE("a shape cast longer than the square of T can hold finds the 
             CHECK(std::abs(hit->hit.fraction * length - T(2.7)) < T(1e-3));
         }
 }
+
+TEST_CASE_TEMPLATE("regression: shapes exactly touching part without a hit, and meet at fraction 0 without overlapping", T, float,
+                   double) {
+    // A capsule standing exactly on a box (its bottom at y = 0, the box's top) was reported
+    // initially overlapping, at fraction 0, whichever way it was cast, up and sideways included:
+    // exact contact never gave a separating plane (v·w > 0), and "never separated" was taken for
+    // overlap. Touching is not intersecting (intersect() says so): moving apart or along the
+    // contact plane is no hit; moving into B is a hit at fraction 0, not overlapping, with the
+    // normal from A to B, (0, −1, 0). The same for a box resting on the box, and in the world.
+    const Shape<T> ground = Box<T>(T(10), T(0.5), T(10));
+    const Transform<T> ground_pose = at(T(0), T(-0.5), T(0));
+    const Vec3<T> down{T(0), T(-1), T(0)};
+    std::vector<std::pair<Shape<T>, T>> standing = {{Capsule<T>(T(0.25), T(0.5)), T(0.75)},
+                                                    {Capsule<T>(T(0.375), T(0.5)), T(0.875)},
+                                                    {Box<T>(T(0.5), T(0.5), T(0.5)), T(0.5)}};
+    // The reviewer's capsule: 0.3 + 0.5 = 0.8 exactly in double; in float intersect() counts it
+    // as overlapping, and so does the cast.
+    if (std::is_same_v<T, double>) standing.push_back({Capsule<T>(T(0.3), T(0.5)), T(0.8)});
+    const std::vector<Vec3<T>> away = {{T(0), T(1), T(0)}, {T(1), T(0), T(0)}, {T(0), T(0), T(-1)},
+                                       {T(1), T(0), T(1)}, {T(1), T(1), T(0)}, {T(-0.2), T(0.01), T(0.3)}};
+    const std::vector<Vec3<T>> into = {down, {T(1), T(-1), T(0)}, {T(0.3), T(-0.01), T(-0.2)}};
+    World<T> w;
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    d.position = ground_pose.position;
+    const BodyId floor = w.create_body(ground, d);
+    for (std::size_t i = 0; i < standing.size(); ++i) {
+        CAPTURE(i);
+        const auto& [shape, height] = standing[i];
+        const Transform<T> pose = at(T(0), height, T(0));
+        REQUIRE_FALSE(intersect(shape, pose, ground, ground_pose));
+        for (const Vec3<T>& move : away) {
+            CAPTURE(move);
+            CHECK_FALSE(shape_cast(shape, pose, move, ground, ground_pose));
+            CHECK_FALSE(w.shape_cast(shape, pose, move));
+        }
+        for (const Vec3<T>& move : into) {
+            CAPTURE(move);
+            const std::optional<ShapeCastHit<T>> hit = shape_cast(shape, pose, move, ground, ground_pose);
+            const std::optional<WorldShapeCastHit<T>> world_hit = w.shape_cast(shape, pose, move);
+            REQUIRE(hit);
+            REQUIRE(world_hit);
+            CHECK(world_hit->body == floor);
+            for (const ShapeCastHit<T>& h : {*hit, world_hit->hit}) {
+                CHECK(h.fraction == T(0));
+                CHECK_FALSE(h.initially_overlapping);
+                CHECK(length(h.normal - down) < T(1e-3));
+                CHECK(std::abs(h.point.y) < T(1e-5));  // on the box's top
+            }
+        }
+        // Lowered 1 cm into the box: a real overlap, flagged, its normal from A to B as well.
+        const std::optional<ShapeCastHit<T>> sunk =
+            shape_cast(shape, at(T(0), height - T(0.01), T(0)), down, ground, ground_pose);
+        REQUIRE(sunk);
+        CHECK(sunk->initially_overlapping);
+        CHECK(sunk->fraction == T(0));
+        CHECK(length(sunk->normal - down) < T(1e-3));
+    }
+}

@@ -16,7 +16,9 @@
 // so it never passes the true time of impact: a cast that runs out of iterations reports a time
 // that is early, never late. Works for every shape, curved ones included (their support functions
 // are exact); no margins. Shapes that overlap at the start report fraction 0 with
-// `initially_overlapping` set and collide()'s normal and point.
+// `initially_overlapping` set and collide()'s normal and point. Shapes that only touch (no
+// overlap, as intersect() has it) are not overlapping: moved apart or along the contact they miss,
+// moved into each other they hit at fraction 0 with the contact's normal, the flag unset.
 #pragma once
 
 #include "../shape/compound.hpp"
@@ -208,9 +210,13 @@ std::optional<ShapeCastHit<T>> gjk_cast(const SupportC& support_c, const Vec3<T>
         const CastVertex<T> p = support_c(v);
         const Vec3<T> w = x - p.c;
         const T vw = dot(v, w);
-        if (vw > T(0)) {  // C's support plane along v separates x from C
+        // C's support plane along v separates x from C, or (vw = 0) holds x: shapes exactly
+        // touching have no gap, and taking only vw > 0 left them "never separated", reported as
+        // overlapping whichever way A moved. Touching is not intersecting: moving away or along
+        // the plane misses, moving into it is a hit at this λ with this plane's normal.
+        if (vw >= T(0)) {
             const T vr = dot(v, translation);
-            if (vr >= T(0)) return std::nullopt;  // moving away from (or along) the plane: never reaches C
+            if (vr >= T(0)) return std::nullopt;  // moving away from (or along) the plane: never enters C
             lambda -= vw / vr;
             if (lambda > T(1)) return std::nullopt;  // beyond the translation
             x = translation * lambda;
@@ -230,7 +236,9 @@ std::optional<ShapeCastHit<T>> gjk_cast(const SupportC& support_c, const Vec3<T>
         const Penetration<T> p = touch(pose_a);
         ShapeCastHit<T> hit;
         hit.initially_overlapping = true;
-        hit.normal = p.hit ? p.normal : -normalized_or(translation, Vec3<T>::unit_y());
+        // From A to B as documented: collide()'s, or (if it finds no depth) from A's interior
+        // point towards B's, then the way A moves.
+        hit.normal = p.hit ? p.normal : normalized_or(inside, normalized_or(translation, Vec3<T>::unit_y()));
         hit.point = p.hit ? p.point_b : pose_a.position;
         return hit;
     }
@@ -307,7 +315,9 @@ std::optional<ShapeCastHit<T>> cast_where_spheres_meet(const Vec3<T>& offset, T 
 
 /// Sweeps shape A from pose_a along `translation` (metres, world) against B resting at pose_b.
 /// Returns the first contact, or nothing when A passes B (or stops short of it). Shapes that
-/// overlap at the start give fraction 0 and `initially_overlapping`. Poses and the translation must
+/// overlap at the start give fraction 0 and `initially_overlapping`; shapes that only touch there
+/// give nothing when A moves away or along the contact, and fraction 0 without the flag when it
+/// moves into B. Poses and the translation must
 /// be finite (InvalidArgument). Only the part of the sweep where the bounding spheres meet is
 /// cast (detail::cast_where_spheres_meet).
 template <class T>
