@@ -341,3 +341,96 @@ TEST_CASE_TEMPLATE("regression: a ray nearly along a long pole's axis enters thr
         }
     }
 }
+
+namespace {
+template <class T>
+World<T> world_with_static(const Shape<T>& shape, const Vec3<T>& position) {
+    World<T> w;
+    BodyDef<T> d;
+    d.type = BodyType::static_body;
+    d.position = position;
+    w.create_body(shape, d);
+    return w;
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("regression: a direction within the accepted 1e-3 of unit length gives distances in metres", T, float,
+                   double) {
+    // The world accepts |direction| within 1e-3 of 1, but the skip up to a far shape assumed 1:
+    // with (1.0001, 0, 0) a sphere 10 km away was hit on its far side (x = 10001), with
+    // (1.0005, 0, 0) missed, and the distance was the ray's parameter, not metres. The near point
+    // of a unit sphere at 10 km is 9999 m away, whatever the direction's length.
+    const T tol = std::is_same_v<T, float> ? T(4e-3) : T(1e-8);
+    const Shape<T> ball = Sphere<T>(T(1));
+    const Vec3<T> centre{T(1e4), T(0), T(0)};
+    const World<T> w = world_with_static(ball, centre);
+    for (const T length_d : {T(1.0001), T(1.0005), T(0.9995), T(1.00099)}) {
+        CAPTURE(length_d);
+        for (const T max_distance : {ScalarTraits<T>::max, T(2e4)}) {
+            const Ray<T> ray{Vec3<T>::zero(), Vec3<T>{length_d, T(0), T(0)}, max_distance};
+            const std::optional<RayHit<T>> shape_hit = raycast(ball, Transform<T>{centre, Quat<T>{}}, ray);
+            const std::optional<WorldRayHit<T>> world_hit = w.raycast(ray);
+            REQUIRE(shape_hit);
+            REQUIRE(world_hit);
+            for (const RayHit<T>& hit : {*shape_hit, world_hit->hit}) {
+                CHECK(near(hit.point.x, T(9999), tol));
+                CHECK(near(hit.distance, T(9999), tol));
+                CHECK(near(hit.fraction, max_distance < ScalarTraits<T>::max ? T(9999) / T(2e4) : T(0), T(1e-6)));
+                CHECK(near(hit.normal, -Vec3<T>::unit_x(), T(1e-5)));
+            }
+        }
+        // Oblique, to a sphere at (6000, 8000, 0): the near point is 9999 m along (0.6, 0.8, 0).
+        const Vec3<T> oblique{T(6000), T(8000), T(0)};
+        const Ray<T> ray{Vec3<T>::zero(), Vec3<T>{T(0.6), T(0.8), T(0)} * length_d, T(2e4)};
+        const World<T> w2 = world_with_static(ball, oblique);
+        const std::optional<WorldRayHit<T>> hit = w2.raycast(ray);
+        REQUIRE(hit);
+        CHECK(near(hit->hit.distance, T(9999), tol));
+        CHECK(near(hit->hit.point, Vec3<T>{T(5999.4), T(7999.2), T(0)}, tol));
+        CHECK(w2.raycast_all(ray).size() == 1);
+        CHECK(w2.raycast_any(ray));
+    }
+}
+
+TEST_CASE_TEMPLATE("regression: raycast(shape, pose, ray) rejects what the world's ray casts reject", T, float, double) {
+    // It returned a hit with fraction NaN for max_distance 0, silently missed with a NaN or
+    // infinite origin, a NaN direction, pose or length, or a zero direction, and a direction of
+    // length 2 missed a sphere it passes through. The world's ray casts reject all of these, and
+    // the shape's ray cast now does too (InvalidArgument), naming itself.
+    const T nan = std::numeric_limits<T>::quiet_NaN(), inf = std::numeric_limits<T>::infinity();
+    const Shape<T> ball = Sphere<T>(T(1));
+    const Transform<T> pose{};
+    const World<T> w = world_with_static(ball, Vec3<T>::zero());
+    const Vec3<T> from{T(-5), T(0), T(0)}, along = Vec3<T>::unit_x();
+    const std::vector<Ray<T>> bad = {
+        {from, along, T(0)},
+        {from, along, T(-1)},
+        {from, along, nan},
+        {Vec3<T>::zero(), along, T(0)},  // inside, with no length
+        {{nan, T(0), T(0)}, along, T(10)},
+        {{-inf, T(0), T(0)}, along, T(10)},
+        {from, {nan, T(0), T(0)}, T(10)},
+        {from, Vec3<T>::zero(), T(10)},
+        {Vec3<T>::zero(), Vec3<T>::zero(), T(10)},
+        {from, {T(2), T(0), T(0)}, T(10)},
+        {from, {T(0.998), T(0), T(0)}, T(10)},
+    };
+    for (std::size_t i = 0; i < bad.size(); ++i) {
+        CAPTURE(i);
+        CHECK_THROWS_AS(raycast(ball, pose, bad[i]), InvalidArgument);
+        CHECK_THROWS_AS(w.raycast(bad[i]), InvalidArgument);
+    }
+    const Ray<T> good{from, along, T(10)};
+    CHECK_THROWS_AS(raycast(ball, Transform<T>{{T(0), nan, T(0)}, Quat<T>{}}, good), InvalidArgument);
+    CHECK_THROWS_AS(raycast(ball, Transform<T>{Vec3<T>::zero(), Quat<T>(nan, T(0), T(0), T(0))}, good), InvalidArgument);
+    // Good input still hits: 4 m along, fraction 0.4, and from inside at 0 facing back.
+    const std::optional<RayHit<T>> hit = raycast(ball, pose, good);
+    REQUIRE(hit);
+    CHECK(near(hit->distance, T(4)));
+    CHECK(near(hit->fraction, T(0.4)));
+    const std::optional<RayHit<T>> inside = raycast(ball, pose, Ray<T>{Vec3<T>::zero(), along, T(10)});
+    REQUIRE(inside);
+    CHECK(inside->distance == T(0));
+    CHECK(inside->fraction == T(0));
+    CHECK(near(inside->normal, -along));
+}

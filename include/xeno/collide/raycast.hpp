@@ -11,6 +11,7 @@
 #pragma once
 
 #include "../shape/shape.hpp"
+#include "mpr.hpp"  // detail::require_finite_pose
 
 #include <algorithm>
 #include <cmath>
@@ -18,24 +19,47 @@
 
 namespace xeno {
 
-/// A ray from origin along the unit direction, at most max_distance long (metres).
+/// A ray from origin along the unit direction, at most max_distance long (metres). The ray casts
+/// (raycast(shape, pose, ray), a mesh's, the world's) take a finite origin, a direction of length
+/// 1 within 1e-3, which they normalise first (so distances are metres), and a max_distance > 0
+/// (ScalarTraits<T>::max or +∞ for no limit); anything else is an InvalidArgument
+/// (detail::checked_ray).
 template <class T>
 struct Ray {
     Vec3<T> origin{};
-    Vec3<T> direction{T(0), T(-1), T(0)};   ///< unit
-    T max_distance = ScalarTraits<T>::max;  ///< m
+    Vec3<T> direction{T(0), T(-1), T(0)};   ///< unit (within 1e-3)
+    T max_distance = ScalarTraits<T>::max;  ///< m, > 0
 };
 
 /// Where a ray meets a shape.
 template <class T>
 struct RayHit {
     T distance{};      ///< m along the ray, 0 … max_distance
-    T fraction{};      ///< distance / max_distance (0 when max_distance is unbounded)
+    T fraction{};      ///< distance / max_distance, 0 … 1 (0 when max_distance is ScalarTraits<T>::max or more)
     Vec3<T> point{};   ///< world
     Vec3<T> normal{};  ///< unit, world, the surface normal at the hit (facing the ray's origin)
 };
 
 namespace detail {
+
+/// The ray as the ray casts use it, or an InvalidArgument from `where` (Ray). A NaN or zero
+/// direction, a NaN or infinite origin and a max_distance of 0 were silent misses or a fraction
+/// of 0/0 in raycast(shape, pose, ray). The skip up to a far shape (ray_skip) and the distances
+/// assume a unit direction: with one 1e-4 too long, a sphere 10 km away was hit on its far side.
+/// A direction unit to T's rounding (|d|² within 4ε of 1, as normalized() gives) is kept as it
+/// is: the skip's slack covers that, and the results stay bit for bit what they were.
+template <class T>
+Ray<T> checked_ray(const Ray<T>& ray, const char* where) {
+    require_finite_xyz(ray.origin, where, "ray.origin");
+    const T length_d = length(ray.direction);
+    if (!is_finite(ray.direction) || !(std::abs(length_d - T(1)) <= T(1e-3)))
+        report_invalid(where, "ray direction must be a unit vector; its length", static_cast<double>(length_d));
+    if (!(ray.max_distance > T(0))) report_invalid(where, "ray max_distance must be > 0", static_cast<double>(ray.max_distance));
+    Ray<T> out = ray;
+    if (std::abs(length_squared(ray.direction) - T(1)) > T(4) * ScalarTraits<T>::epsilon)
+        out.direction = ray.direction / length_d;
+    return out;
+}
 
 /// Local-frame hit: distance and outward normal.
 template <class T>
@@ -287,11 +311,11 @@ std::optional<SkippedRay<T>> skip_to(const Transform<T>& pose, const Vec3<T>& ce
 
 }  // namespace detail
 
-/// The first point where the ray meets the shape placed by pose, if it does within max_distance.
-/// A ray starting inside the shape hits at distance 0. The direction must be unit. A ray from far
-/// away is first moved up to the shape along itself (detail::ray_skip).
+namespace detail {
+
+/// raycast(shape, pose, ray) on a checked ray (checked_ray) and pose.
 template <class T>
-std::optional<RayHit<T>> raycast(const Shape<T>& shape, const Transform<T>& pose, const Ray<T>& ray) {
+std::optional<RayHit<T>> raycast_checked(const Shape<T>& shape, const Transform<T>& pose, const Ray<T>& ray) {
     const std::optional<detail::SkippedRay<T>> s = detail::skip_to(pose, pose.position, bounding_radius(shape), ray);
     if (!s) return std::nullopt;
     const std::optional<detail::LocalHit<T>> hit =
@@ -303,6 +327,19 @@ std::optional<RayHit<T>> raycast(const Shape<T>& shape, const Transform<T>& pose
     out.point = s->start + ray.direction * hit->t;
     out.normal = pose.apply_direction(hit->n);
     return out;
+}
+
+}  // namespace detail
+
+/// The first point where the ray meets the shape placed by pose, if it does within max_distance.
+/// A ray starting inside the shape hits at distance 0 (fraction 0), with the normal facing back
+/// along the ray. The ray and pose are checked as the world's ray casts check them (Ray;
+/// InvalidArgument), and the direction is normalised first. A ray from far away is first moved up
+/// to the shape along itself (detail::skip_to).
+template <class T>
+std::optional<RayHit<T>> raycast(const Shape<T>& shape, const Transform<T>& pose, const Ray<T>& ray) {
+    detail::require_finite_pose(pose, "raycast", "pose");
+    return detail::raycast_checked(shape, pose, detail::checked_ray(ray, "raycast"));
 }
 
 /// True when the world point lies inside (or on) the shape placed by pose.

@@ -360,7 +360,9 @@ public:
     // lower slot, lists come in slot order (tested against a scan of every body).
 
     /// The nearest body the ray hits within its length, if any (every shape type, solid: a ray
-    /// starting inside a body hits it at distance 0). The direction must be unit (InvalidArgument).
+    /// starting inside a body hits it at distance 0). The ray is checked and its direction
+    /// normalised as Ray says (unit within 1e-3, max_distance > 0; InvalidArgument otherwise), so
+    /// distances are metres.
     std::optional<WorldRayHit<T>> raycast(const Ray<T>& ray, const QueryFilter<T>& filter = {}) const;
     /// A body the ray hits, the first one found, not necessarily the nearest: a line-of-sight test
     /// that stops at the first hit.
@@ -689,7 +691,6 @@ private:
     /// events land in the same places however the blocks are handed out).
     static constexpr std::uint32_t event_block = 256;
     // Query helpers (world_query.hpp).
-    static void check_ray(const Ray<T>& ray, const char* where);
     bool seen_by(const QueryFilter<T>& filter, std::uint32_t slot) const { return filter.passes(id_of(slot), bodies_[slot]); }
     std::optional<RayHit<T>> nearest_hit(std::uint32_t slot, const Ray<T>& ray) const;
     template <class Exact>

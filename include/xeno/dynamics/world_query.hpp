@@ -16,16 +16,6 @@
 
 namespace xeno {
 
-template <class T>
-void World<T>::check_ray(const Ray<T>& ray, const char* where) {
-    detail::require_finite_xyz(ray.origin, where, "ray.origin");
-    if (!is_finite(ray.direction) || std::abs(length(ray.direction) - T(1)) > T(1e-3))
-        detail::report_invalid(where, "ray direction must be a unit vector; its length",
-                               static_cast<double>(length(ray.direction)));
-    if (!(ray.max_distance > T(0)))
-        detail::report_invalid(where, "ray max_distance must be > 0", static_cast<double>(ray.max_distance));
-}
-
 /// The body's nearest hit over its parts (one for a convex body), in the ray's own length.
 template <class T>
 std::optional<RayHit<T>> World<T>::nearest_hit(std::uint32_t slot, const Ray<T>& ray) const {
@@ -35,14 +25,14 @@ std::optional<RayHit<T>> World<T>::nearest_hit(std::uint32_t slot, const Ray<T>&
         if (const auto hit = xeno::raycast(*b.mesh(), b.transform(), ray)) nearest = hit->first;
     }
     for (std::uint32_t k = 0; k < b.child_count(); ++k)
-        if (const std::optional<RayHit<T>> hit = xeno::raycast(b.child_shape(k), b.child_transform(k), ray))
+        if (const std::optional<RayHit<T>> hit = detail::raycast_checked(b.child_shape(k), b.child_transform(k), ray))
             if (!nearest || hit->distance < nearest->distance) nearest = hit;
     return nearest;
 }
 
 template <class T>
-std::optional<WorldRayHit<T>> World<T>::raycast(const Ray<T>& ray, const QueryFilter<T>& filter) const {
-    check_ray(ray, "World::raycast");
+std::optional<WorldRayHit<T>> World<T>::raycast(const Ray<T>& unchecked, const QueryFilter<T>& filter) const {
+    const Ray<T> ray = detail::checked_ray(unchecked, "World::raycast");
     std::optional<WorldRayHit<T>> best;
     auto visit = [&](std::uint32_t slot, T reach) {
         if (!seen_by(filter, slot)) return reach;
@@ -59,8 +49,8 @@ std::optional<WorldRayHit<T>> World<T>::raycast(const Ray<T>& ray, const QueryFi
 }
 
 template <class T>
-std::optional<WorldRayHit<T>> World<T>::raycast_any(const Ray<T>& ray, const QueryFilter<T>& filter) const {
-    check_ray(ray, "World::raycast_any");
+std::optional<WorldRayHit<T>> World<T>::raycast_any(const Ray<T>& unchecked, const QueryFilter<T>& filter) const {
+    const Ray<T> ray = detail::checked_ray(unchecked, "World::raycast_any");
     std::optional<WorldRayHit<T>> found;
     for (const AabbTree<T>& tree : query_trees_) {
         tree.query_segment(ray.origin, ray.direction, ray.max_distance, [&](std::uint32_t slot, T reach) {
@@ -76,8 +66,8 @@ std::optional<WorldRayHit<T>> World<T>::raycast_any(const Ray<T>& ray, const Que
 }
 
 template <class T>
-std::vector<WorldRayHit<T>> World<T>::raycast_all(const Ray<T>& ray, const QueryFilter<T>& filter) const {
-    check_ray(ray, "World::raycast_all");
+std::vector<WorldRayHit<T>> World<T>::raycast_all(const Ray<T>& unchecked, const QueryFilter<T>& filter) const {
+    const Ray<T> ray = detail::checked_ray(unchecked, "World::raycast_all");
     std::vector<WorldRayHit<T>> hits;
     for (const AabbTree<T>& tree : query_trees_)
         tree.query_segment(ray.origin, ray.direction, ray.max_distance, [&](std::uint32_t slot, T reach) {

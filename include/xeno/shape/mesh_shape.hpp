@@ -51,9 +51,13 @@ void for_each_triangle(const MeshShape<T>& m, const Aabb<T>& local_box, F&& f, K
 }
 
 /// The nearest hit of a world ray on mesh m placed by `pose` (either side of a triangle), with
-/// the index of the triangle hit.
+/// the index of the triangle hit. The ray and pose are checked and the direction normalised as by
+/// raycast(shape, pose, ray).
 template <class T>
-std::optional<std::pair<RayHit<T>, std::uint32_t>> raycast(const MeshShape<T>& m, const Transform<T>& pose, const Ray<T>& ray) {
+std::optional<std::pair<RayHit<T>, std::uint32_t>> raycast(const MeshShape<T>& m, const Transform<T>& pose,
+                                                           const Ray<T>& unchecked) {
+    detail::require_finite_pose(pose, "raycast", "pose");
+    const Ray<T> ray = detail::checked_ray(unchecked, "raycast");
     // A ray from far away first moves up to the mesh's bounding sphere, as for convex shapes.
     const Aabb<T> bounds = local_bounds(m);
     const auto s = detail::skip_to(pose, pose.apply(bounds.center()), length(bounds.half_extents()), ray);
