@@ -434,3 +434,35 @@ TEST_CASE_TEMPLATE("regression: raycast(shape, pose, ray) rejects what the world
     CHECK(inside->fraction == T(0));
     CHECK(near(inside->normal, -along));
 }
+
+TEST_CASE_TEMPLATE("regression: rays from near the end of the range hit round shapes", T, float, double) {
+    // After the skip up to the shape the start was still a few ulps of the origin away (10¹⁹ m
+    // from 10²⁶ m in float), and the round shapes' quadratics squared that: from 10²⁶ m (float) or
+    // 10²⁰⁰ m (double) a sphere, capsule, cylinder and cone at the origin were missed. Closed
+    // forms: along the x axis at height y the ray enters a sphere of radius 1 at x = −√(1 − y²), a
+    // capsule's or cylinder's side of radius 0.5 at x = −0.5, and the cone (radius 1, height 2,
+    // apex 1.5 above its centroid) at y = 0 where its radius is 0.75.
+    const bool is_float = std::is_same_v<T, float>;
+    struct Case {
+        Shape<T> shape;
+        T y, x;
+    };
+    const std::vector<Case> cases = {{Sphere<T>(T(1)), T(0), T(-1)},
+                                     {Sphere<T>(T(1)), T(0.6), T(-0.8)},
+                                     {Capsule<T>(T(0.5), T(1)), T(0.25), T(-0.5)},
+                                     {Cylinder<T>(T(0.5), T(1)), T(-0.25), T(-0.5)},
+                                     {Cone<T>(T(1), T(2)), T(0), T(-0.75)}};
+    const std::vector<double> fars =
+        is_float ? std::vector<double>{1e20, 1e26, 1e30, 1e37, 3e38} : std::vector<double>{1e160, 1e200, 1e300, 1.7e308};
+    for (const double far : fars)
+        for (std::size_t i = 0; i < cases.size(); ++i) {
+            CAPTURE(far);
+            CAPTURE(i);
+            const Ray<T> ray{{static_cast<T>(-far), cases[i].y, T(0)}, Vec3<T>::unit_x(), ScalarTraits<T>::max};
+            const std::optional<RayHit<T>> hit = raycast(cases[i].shape, Transform<T>{}, ray);
+            REQUIRE(hit);
+            CHECK(near(hit->point, Vec3<T>{cases[i].x, cases[i].y, T(0)}, T(1e-5)));
+            CHECK(hit->distance == doctest::Approx(far).epsilon(1e-6));
+            CHECK(hit->normal.x < T(-0.79));  // −0.8 at y = 0.6 on the sphere; the cone's side leans 27° up
+        }
+}

@@ -299,11 +299,22 @@ struct SkippedRay {
 
 /// The ray moved up to a shape placed by `pose` within `reach` of `centre` (world), or nothing
 /// when the shape lies beyond max_distance or the ray passes it farther than the range of T.
+/// One skip leaves the start a few ulps of the origin short (10¹⁹ m from 10²⁶ m in float), which
+/// the round shapes' quadratics squared past the range of T: from 10²⁶ m (float) or 10²⁰⁰ m
+/// (double) a unit sphere was missed. So the ray skips again from where it landed, each time
+/// a factor of about 1/(8ε) closer, until it is within about twice the reach (or the rounding of
+/// the centre's own coordinates); a ray from nearer than about reach / (8ε) skips once, as before.
 template <class T>
 std::optional<SkippedRay<T>> skip_to(const Transform<T>& pose, const Vec3<T>& centre, T reach, const Ray<T>& ray) {
-    const T skip = ray_skip(centre, reach, ray);
-    if (!(skip <= ray.max_distance)) return std::nullopt;
-    const Vec3<T> start = skip > T(0) ? ray.origin + ray.direction * skip : ray.origin;
+    T skip = T(0);
+    Vec3<T> start = ray.origin;
+    for (int i = 0; i < 64; ++i) {  // 21 skips cross double's whole range
+        const T step = ray_skip(centre, reach, Ray<T>{start, ray.direction, ray.max_distance});
+        if (!(skip + step <= ray.max_distance)) return std::nullopt;
+        if (!(step > T(0))) break;
+        start = start + ray.direction * step;
+        skip += step;
+    }
     const Vec3<T> origin = pose.inverse_apply(start);
     if (!is_finite(origin)) return std::nullopt;
     return SkippedRay<T>{skip, start, origin, pose.inverse_apply_direction(ray.direction)};
