@@ -636,6 +636,7 @@ private:
     void measure_group_speeds(T dt);
     bool closes_within_step(const Contact<T>& c, T dt, T struck_speed) const;
     bool within_slop(const Contact<T>& c) const;
+    bool separating(const Contact<T>& c, T speed) const;
     void prepare(T dt);
     void solve_substep(int sub, T h, detail::SolvePass<T>& pass);
     void prepare_solver_bodies(T h);
@@ -804,6 +805,7 @@ private:
     std::vector<std::uint32_t> contact_start_;       ///< per slot: the end of its run in contact_list_ (index_contacts)
     std::vector<std::uint32_t> contact_list_;        ///< contact indices grouped by body slot
     std::vector<std::uint32_t> island_parent_;       ///< union–find parents per slot (wake, sleep)
+    std::vector<std::uint32_t> drift_parent_;        ///< union–find parents per slot: bodies that hold each other (sleep)
     std::vector<std::uint8_t> island_flag_;          ///< per island root: wake it, or (falling asleep) held
     std::vector<T> island_sleep_time_;               ///< per island root: the least sleep clock (first: group speeds)
     std::vector<std::uint32_t> pair_degree_;         ///< per slot: broad-phase pairs (crowd thinning)
@@ -3073,22 +3075,55 @@ void World<T>::keep_drifting_islands_awake() {
     bool any = false;  // nearly every step nothing is about to sleep
     for (std::uint32_t i = 0; i < bodies_.size() && !any; ++i) any = would_sleep(i);
     if (!any) return;
+    // Held is judged over the bodies joined by joints and by contacts that touch, or lie within
+    // the slop and are not coming apart: an island joins a body within the slop (build_islands),
+    // which shares its clock but takes no force from it, and a ball drifting off at 5 mm/s, 2 mm
+    // from a box resting on the floor (gravity 0), froze with the box.
+    std::vector<std::uint32_t>& parent = drift_parent_;
+    parent.resize(bodies_.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto root = [&](std::uint32_t slot) {
+        while (parent[slot] != slot) slot = parent[slot] = parent[parent[slot]];
+        return slot;
+    };
+    const auto dynamic = [&](std::uint32_t slot) { return bodies_[slot].type_ == BodyType::dynamic; };
+    const T apart = T(1e-3) * settings_.sleep_linear_speed;
+    const auto holds = [&](const Contact<T>& c) {
+        return !c.sensor && c.manifold.count > 0 && (c.touching || (within_slop(c) && !separating(c, apart)));
+    };
+    for (const Contact<T>& c : contacts_)
+        if (dynamic(c.a.index) && dynamic(c.b.index) && holds(c)) parent[root(c.a.index)] = root(c.b.index);
+    for (const Joint<T>& j : joints_)
+        if (joint_active(j) && dynamic(j.a.index) && dynamic(j.b.index)) parent[root(j.a.index)] = root(j.b.index);
     std::vector<std::uint8_t>& held = island_flag_;  // scratch here: wake_touched_islands is done with it
     held.assign(bodies_.size(), 0);
     const auto hold = [&](std::uint32_t a, std::uint32_t b) {  // a body of one side held by the other
-        if (bodies_[a].type_ != BodyType::dynamic) held[island_root(b)] = 1;
-        if (bodies_[b].type_ != BodyType::dynamic) held[island_root(a)] = 1;
+        if (!dynamic(a)) held[root(b)] = 1;
+        if (!dynamic(b)) held[root(a)] = 1;
     };
     for (const Contact<T>& c : contacts_)
-        if (!c.sensor && c.manifold.count > 0 && (c.touching || within_slop(c))) hold(c.a.index, c.b.index);
+        if (holds(c)) hold(c.a.index, c.b.index);
     for (const Joint<T>& j : joints_)
         if (joint_active(j)) hold(j.a.index, j.b.index);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
         const Body<T>& b = bodies_[i];
-        if (would_sleep(i) && !held[island_root(i)] &&
+        if (would_sleep(i) && !held[root(i)] &&
             (length_squared(b.linear_velocity_) > T(0) || length_squared(b.angular_velocity_) > T(0)))
             island_min[island_root(i)] = T(0);
     }
+}
+
+/// Whether every point of the contact opens faster than `speed` (m/s) along the normal.
+template <class T>
+bool World<T>::separating(const Contact<T>& c, T speed) const {
+    const Body<T>& a = bodies_[c.a.index];
+    const Body<T>& b = bodies_[c.b.index];
+    for (int i = 0; i < c.manifold.count; ++i) {
+        const ContactPoint<T>& cp = c.manifold.points[static_cast<std::size_t>(i)];
+        const Vec3<T> pa = a.world_point(cp.local_a), pb = b.world_point(cp.local_b);
+        if (!(dot(b.velocity_at(pb) - a.velocity_at(pa), c.manifold.normal) > speed)) return false;
+    }
+    return true;
 }
 
 namespace f32 {
