@@ -248,6 +248,21 @@ struct NormalGroup {
             points.set(static_cast<std::size_t>(count++), p);
         }
     }
+    /// One point, the one nearest the line through `centre` along the normal: a ball touches a
+    /// surface once, under its centre. Neighbouring triangles gave a turned ball a second point
+    /// 1-4 mm off it, whose share of the friction row, off the true point, braked a rolling ball
+    /// (one rolling at 0.5 m/s on 2.5 cm cells lost 40 % of its speed in 3 s).
+    void keep_point_under(const Vec3<T>& centre) {
+        int best = 0;
+        T nearest = ScalarTraits<T>::infinity;
+        for (int i = 0; i < count; ++i) {
+            const Vec3<T> off = points[static_cast<std::size_t>(i)].point_b - centre;
+            const T across = length_squared(off - normal * dot(off, normal));
+            if (across < nearest) nearest = across, best = i;
+        }
+        if (best != 0) points.set(0, points[static_cast<std::size_t>(best)]);
+        count = std::min(count, 1);
+    }
     /// Depths along the group's normal, then the four points that keep the deepest and span most.
     /// On flat ground many points tie for the deepest: the one farthest from the points' centre
     /// is kept first, so the four are the patch's corners rather than the first point found.
@@ -401,8 +416,10 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
                 for (const Vec3<T>& v : b.triangle.v) rises = rises || dot(v - under.v[0], under.normal) > sweep.rise;
         if (rises) add(b.index, b.manifold);
     }
+    const bool ball = std::holds_alternative<Sphere<T>>(convex);
     for (detail::NormalGroup<T>& g : groups) {
         g.reduce();
+        if (ball) g.keep_point_under(centre);
         MeshContact<T> c;
         c.triangle = g.triangle;
         c.manifold.normal = pose_mesh.apply_direction(g.normal);
