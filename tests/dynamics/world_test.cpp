@@ -6,6 +6,8 @@
 #include "support/approx.hpp"
 #include "support/sim.hpp"
 
+#include <xeno/shape/polyhedra.hpp>
+
 using namespace xeno;
 using xeno::test::near;
 
@@ -317,4 +319,42 @@ TEST_CASE_TEMPLATE("a sleeping stack wakes when the body under it is destroyed o
     CHECK(w.body(upper).awake());
     test::simulate(w, T(2));
     CHECK(w.body(upper).position().y < top_before - T(0.9));
+}
+
+// A moved-from mesh, heightfield, compound or hull is a valid C++ object with nothing in it: the
+// mesh crashed create_body (its bounds read an empty tree), and an empty compound or hull was
+// accepted and left a world whose own snapshot did not restore. Each is refused, and the world
+// is unchanged.
+TEST_CASE_TEMPLATE("regression: a moved-from mesh, heightfield, compound or hull is refused by create_body and set_shape", T,
+                   float, double) {
+    World<T> w;
+    BodyDef<T> def;
+    def.position = {T(0), T(3), T(0)};
+    const BodyId box = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+    const std::size_t bodies = w.body_count();
+    BodyDef<T> fixed;
+    fixed.type = BodyType::static_body;
+
+    TriangleMesh<T> mesh({{T(-5), T(0), T(-5)}, {T(5), T(0), T(-5)}, {T(0), T(0), T(5)}}, {{{0, 2, 1}}});
+    const TriangleMesh<T> mesh_kept = std::move(mesh);
+    CHECK_THROWS_AS(w.create_body(mesh, fixed), InvalidArgument);  // NOLINT(bugprone-use-after-move)
+    HeightField<T> field(3, 3, std::vector<T>(9, T(0)), T(1));
+    const HeightField<T> field_kept = std::move(field);
+    CHECK_THROWS_AS(w.create_body(field, fixed), InvalidArgument);  // NOLINT(bugprone-use-after-move)
+    Compound<T> compound({CompoundChild<T>{Sphere<T>(T(1)), {}}});
+    const Compound<T> compound_kept = std::move(compound);
+    CHECK_THROWS_AS(w.create_body(compound, def), InvalidArgument);  // NOLINT(bugprone-use-after-move)
+    CHECK_THROWS_AS(w.set_shape(box, std::make_shared<const Compound<T>>(compound)), InvalidArgument);
+    ConvexPolyhedron<T> hull = make_box_polyhedron<T>({T(1), T(1), T(1)});
+    const ConvexPolyhedron<T> hull_kept = std::move(hull);
+    CHECK_THROWS_AS(w.create_body(Shape<T>(hull), def), InvalidArgument);  // NOLINT(bugprone-use-after-move)
+    CHECK_THROWS_AS(w.set_shape(box, std::make_shared<const Shape<T>>(hull)), InvalidArgument);
+    CHECK(w.body_count() == bodies);
+    CHECK(std::holds_alternative<Box<T>>(w.body(box).shape()));
+    // The kept ones still make bodies.
+    CHECK_NOTHROW(w.create_body(mesh_kept, fixed));
+    CHECK_NOTHROW(w.create_body(compound_kept, def));
+    CHECK_NOTHROW(w.create_body(Shape<T>(hull_kept), def));
+    (void)field_kept;
+    w.step(T(1) / T(60));
 }

@@ -852,10 +852,40 @@ BodyId World<T>::create_body(const HeightField<T>& field, const BodyDef<T>& def)
     return create_body(std::make_shared<const MeshShape<T>>(field), def);
 }
 
+namespace detail {
+
+// A shape's own constructor checks it, but a moved-from mesh, compound or hull is a valid object
+// with nothing in it: a moved-from mesh crashed create_body (its bounds read an empty tree), and
+// an empty compound or hull was accepted and left a world whose own snapshot did not restore.
+template <class T>
+void require_moved_in(const Shape<T>& shape, const char* where) {
+    if (const auto* hull = std::get_if<ConvexPolyhedron<T>>(&shape); hull && hull->vertices().size() < 4)
+        report_invalid(where, "a convex hull needs at least 4 vertices (a moved-from hull?); vertices",
+                       static_cast<double>(hull->vertices().size()));
+}
+template <class T>
+void require_moved_in(const Compound<T>& compound, const char* where) {
+    if (compound.children().empty()) report_invalid(where, "a compound needs a part (a moved-from compound?); parts", 0.0);
+    for (const CompoundChild<T>& child : compound.children()) require_moved_in(child.shape, where);
+}
+template <class T>
+void require_moved_in(const MeshShape<T>& mesh, const char* where) {
+    const bool empty = std::visit(
+        [](const auto& m) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, HeightField<T>>) return m.empty();
+            else return m.vertices().empty() || m.size() == 0;
+        },
+        mesh);
+    if (empty) report_invalid(where, "a mesh or heightfield needs its triangles (a moved-from one?); triangles", 0.0);
+}
+
+}  // namespace detail
+
 template <class T>
 BodyId World<T>::create_body(std::shared_ptr<const Shape<T>> shape, const BodyDef<T>& def) {
     require_outside_filter("World::create_body");
     if (!shape) detail::report_invalid("World::create_body", "shape must not be null", 0.0);
+    detail::require_moved_in(*shape, "World::create_body");
     return create_body_impl(std::move(shape), nullptr, def);
 }
 
@@ -863,6 +893,7 @@ template <class T>
 BodyId World<T>::create_body(std::shared_ptr<const Compound<T>> compound, const BodyDef<T>& def) {
     require_outside_filter("World::create_body");
     if (!compound) detail::report_invalid("World::create_body", "compound must not be null", 0.0);
+    detail::require_moved_in(*compound, "World::create_body");
     return create_body_impl(nullptr, std::move(compound), def);
 }
 
@@ -870,6 +901,7 @@ template <class T>
 BodyId World<T>::create_body(std::shared_ptr<const MeshShape<T>> mesh, const BodyDef<T>& def) {
     require_outside_filter("World::create_body");
     if (!mesh) detail::report_invalid("World::create_body", "mesh must not be null", 0.0);
+    detail::require_moved_in(*mesh, "World::create_body");
     const BodyId id = create_body_impl(nullptr, nullptr, def, std::move(mesh));
     bind_mesh_pairs();
     return id;

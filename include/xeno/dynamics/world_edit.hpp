@@ -133,6 +133,7 @@ void World<T>::set_shape(BodyId id, std::shared_ptr<const Shape<T>> shape, MassU
     const char* where = "World::set_shape";
     require_outside_filter(where);
     if (!shape) detail::report_invalid(where, "shape must not be null", 0.0);
+    detail::require_moved_in(*shape, where);
     require_centred(*shape, where);
     set_shape_impl(checked(id, where), std::move(shape), nullptr, mass, where);
 }
@@ -142,6 +143,7 @@ void World<T>::set_shape(BodyId id, std::shared_ptr<const Compound<T>> compound,
     const char* where = "World::set_shape";
     require_outside_filter(where);
     if (!compound) detail::report_invalid(where, "compound must not be null", 0.0);
+    detail::require_moved_in(*compound, where);
     set_shape_impl(checked(id, where), nullptr, std::move(compound), mass, where);
 }
 

@@ -38,6 +38,8 @@ public:
                 std::vector<std::uint8_t> holes = {});
 
     std::uint32_t columns() const { return columns_; }
+    /// True only for a moved-from field: a constructed one has its samples.
+    bool empty() const { return heights_.empty(); }
     std::uint32_t rows() const { return rows_; }
     T spacing() const { return spacing_; }
     std::size_t size() const { return 2 * std::size_t(columns_ - 1) * (rows_ - 1); }
