@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 using namespace xeno;
@@ -255,4 +256,19 @@ TEST_CASE_TEMPLATE("regression: collide(A, B) and collide(B, A) agree bit for bi
         CHECK(std::memcmp(&ab.depth, &ba.depth, sizeof(T)) == 0);
     }
     CHECK(hits > 36 * 20);
+}
+
+// Two finite poses at ±max of T are farther apart than T holds: the offset overflowed to inf,
+// and two boxes there "hit" with depth inf and NaN points. Nothing spans that distance.
+TEST_CASE_TEMPLATE("regression: shapes at opposite ends of T's range do not touch", T, float, double) {
+    const T far = std::numeric_limits<T>::max();
+    const Shape<T> box = Box<T>(T(1), T(1), T(1));
+    const Shape<T> ball = Sphere<T>(T(1));
+    for (const Vec3<T>& axis : {Vec3<T>::unit_x(), Vec3<T>::unit_y(), Vec3<T>::unit_z()}) {
+        const Transform<T> a{axis * far, Quat<T>::identity()}, b{axis * -far, Quat<T>::identity()};
+        CHECK_FALSE(collide(box, a, box, b).hit);
+        CHECK_FALSE(intersect(box, a, box, b));
+        CHECK_FALSE(collide(ball, a, box, b).hit);
+        CHECK_FALSE(intersect(box, b, ball, a));
+    }
 }

@@ -358,3 +358,25 @@ TEST_CASE_TEMPLATE("regression: a moved-from mesh, heightfield, compound or hull
     (void)field_kept;
     w.step(T(1) / T(60));
 }
+
+// A finite, non-zero hinge axis of length 1e-20 (or 1e20 in float) had |axis|² underflow (or
+// overflow) and was refused as "zero"; and set_shape took an out-of-range MassUpdate as recompute.
+TEST_CASE_TEMPLATE("regression: a tiny or huge joint axis is an axis, and set_shape refuses an unknown MassUpdate", T, float,
+                   double) {
+    World<T> w;
+    BodyDef<T> def;
+    const BodyId a = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+    def.position = {T(2), T(0), T(0)};
+    const BodyId b = w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+    for (const T length : {T(1e-20), T(1e20)}) {
+        CAPTURE(length);
+        JointId j{};
+        CHECK_NOTHROW(j = w.create_joint(JointDef<T>::hinge(a, b, Vec3<T>{T(1), T(0), T(0)}, Vec3<T>{length, length, T(0)})));
+        CHECK_NOTHROW(w.destroy_joint(j));
+    }
+    const std::size_t bodies = w.body_count();
+    CHECK_THROWS_AS(w.set_shape(a, std::make_shared<const Shape<T>>(Sphere<T>(T(1))), static_cast<MassUpdate>(5)),
+                    InvalidArgument);
+    CHECK(std::holds_alternative<Box<T>>(w.body(a).shape()));
+    CHECK(w.body_count() == bodies);
+}

@@ -252,6 +252,14 @@ Penetration<T> collide_in_order(const Shape<T>& a, const Transform<T>& pose_a, c
     return collide_pair(any_a, pose_a, any_b, pose_b);
 }
 
+/// Whether B's position less A's is finite. Two finite poses near ±max of T are farther apart
+/// than T holds, and no shape (at most max_size across) spans that: two boxes at ±FLT_MAX had
+/// their offset overflow to inf, which the separating-axis test read as an overlap of depth inf.
+template <class T>
+bool offset_is_finite(const Transform<T>& pose_a, const Transform<T>& pose_b) {
+    return is_finite(pose_b.position - pose_a.position);
+}
+
 }  // namespace detail
 
 /// True when the shapes overlap (touching is not overlapping). Poses must be finite (InvalidArgument).
@@ -260,6 +268,7 @@ template <class T>
 bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
     detail::require_finite_pose(pose_a, "intersect", "pose_a");
     detail::require_finite_pose(pose_b, "intersect", "pose_b");
+    if (!detail::offset_is_finite(pose_a, pose_b)) return false;
     if (detail::query_order_swapped(a, pose_a, b, pose_b)) return detail::intersect_in_order(b, pose_b, a, pose_a);
     return detail::intersect_in_order(a, pose_a, b, pose_b);
 }
@@ -273,6 +282,7 @@ template <class T>
 Penetration<T> collide(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
     detail::require_finite_pose(pose_a, "collide", "pose_a");
     detail::require_finite_pose(pose_b, "collide", "pose_b");
+    if (!detail::offset_is_finite(pose_a, pose_b)) return {};
     if (detail::query_order_swapped(a, pose_a, b, pose_b)) return detail::flipped(detail::collide_in_order(b, pose_b, a, pose_a));
     return detail::collide_in_order(a, pose_a, b, pose_b);
 }

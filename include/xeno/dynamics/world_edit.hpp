@@ -152,6 +152,9 @@ void World<T>::set_shape(BodyId id, std::shared_ptr<const Compound<T>> compound,
 template <class T>
 void World<T>::set_shape_impl(std::uint32_t slot, std::shared_ptr<const Shape<T>> shape,
                               std::shared_ptr<const Compound<T>> compound, MassUpdate mass, const char* where) {
+    if (mass != MassUpdate::recompute && mass != MassUpdate::keep)
+        detail::report_invalid(where, "mass must be MassUpdate::recompute or MassUpdate::keep; mass",
+                               static_cast<double>(static_cast<std::uint8_t>(mass)));
     Body<T>& b = bodies_[slot];
     MassProperties<T> m{};
     // Kept, the mass stays and the inertia is the new shape's at that mass: the old inertia kept

@@ -16,7 +16,10 @@ namespace xeno {
 template <class T>
 void World<T>::set_axis_limit_motor(Joint<T>& j, const JointDef<T>& def, const Body<T>& a, const Body<T>& b, const char* where) {
     detail::require_finite_xyz(def.axis, where, "axis");
-    const std::optional<Vec3<T>> axis = try_normalized(def.axis);
+    // Scaled by its largest component first: |axis|² of a finite axis can underflow (1e-20) or
+    // overflow (1e20 in float), and such an axis was refused as zero.
+    const T largest = max_component(abs(def.axis));
+    const std::optional<Vec3<T>> axis = largest > T(0) ? try_normalized(def.axis / largest) : std::nullopt;
     if (!axis)
         detail::report_invalid(where, "the joint axis must be non-zero; its length", static_cast<double>(length(def.axis)));
     j.local_axis_a = a.local_vector(*axis);
