@@ -106,6 +106,26 @@ TEST_CASE_TEMPLATE("update runs whole fixed steps, caps them and leaves an inter
     CHECK(near(w.body(id).position().x, T(10) / T(60), T(1e-4)));
 }
 
+// Regression: with half a step in the accumulator, a fixed step set to the smallest subnormal
+// made interpolation_factor() inf (float and double alike). The next update() takes
+// max_steps_per_update steps and drops the rest, so the factor is that many steps owed plus the
+// fraction left: at most max_steps_per_update + 1, then below 1 once update() has run.
+TEST_CASE_TEMPLATE("the interpolation factor stays finite when the fixed step shrinks to a subnormal", T, float, double) {
+    World<T> w;
+    w.create_body(Sphere<T>(T(0.5)));
+    REQUIRE(w.update(T(1) / T(60) * T(1.5)) == 1);
+    WorldSettings<T> s = w.settings();
+    s.fixed_time_step = std::numeric_limits<T>::denorm_min();
+    w.set_settings(s);
+    const T owed = w.interpolation_factor();
+    CHECK(std::isfinite(owed));
+    CHECK(owed >= static_cast<T>(s.max_steps_per_update));
+    CHECK(owed <= static_cast<T>(s.max_steps_per_update) + T(1));
+    CHECK(w.update(T(0)) == s.max_steps_per_update);
+    CHECK(w.interpolation_factor() >= T(0));
+    CHECK(w.interpolation_factor() < T(1));
+}
+
 TEST_CASE_TEMPLATE("static bodies never move and kinematic bodies push dynamic ones", C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
     World<T> w(C::settings());

@@ -432,8 +432,12 @@ public:
     /// interpolated_transform() to hide the fixed step. It is the accumulator in steps, so it
     /// exceeds 1 while steps are owed: after a listener threw out of update(), or after
     /// set_settings made fixed_time_step smaller (the next update() steps them, up to
-    /// max_steps_per_update); interpolated_transform clamps it.
-    T interpolation_factor() const { return accumulator_ / settings_.fixed_time_step; }
+    /// max_steps_per_update); interpolated_transform clamps it. At most max_steps_per_update + 1:
+    /// the next update() drops what is owed beyond (a fixed step set to the smallest subnormal
+    /// made the quotient inf).
+    T interpolation_factor() const {
+        return std::min(accumulator_ / settings_.fixed_time_step, static_cast<T>(settings_.max_steps_per_update) + T(1));
+    }
     /// The body's pose blended between the last two steps by interpolation_factor().
     Transform<T> interpolated_transform(BodyId id) const;
 
@@ -653,7 +657,8 @@ private:
     void solve(T dt);
     void thin_crowded_pairs();
     void build_islands();
-    std::uint32_t island_root(std::uint32_t slot);
+    std::uint32_t island_root(std::uint32_t slot) { return union_root(island_parent_, slot); }
+    static std::uint32_t union_root(std::vector<std::uint32_t>& parent, std::uint32_t slot);
     void finish();
     void discard_overflowed_solve();
     void update_sleep(T dt);
@@ -2245,10 +2250,10 @@ void World<T>::build_islands() {
         if (joint_active(j) && dynamic(j.a.index) && dynamic(j.b.index)) parent[island_root(j.a.index)] = island_root(j.b.index);
 }
 
-/// The root of a slot's island (union–find with path halving; after build_islands).
+/// The root of a slot in a union–find over body slots, halving the path as it goes: islands
+/// (island_root, after build_islands) and the bodies that hold each other (keep_drifting_islands_awake).
 template <class T>
-std::uint32_t World<T>::island_root(std::uint32_t slot) {
-    std::vector<std::uint32_t>& parent = island_parent_;
+std::uint32_t World<T>::union_root(std::vector<std::uint32_t>& parent, std::uint32_t slot) {
     while (parent[slot] != slot) slot = parent[slot] = parent[parent[slot]];
     return slot;
 }
@@ -3114,17 +3119,15 @@ void World<T>::keep_drifting_islands_awake() {
     std::vector<std::uint32_t>& parent = drift_parent_;
     parent.resize(bodies_.size());
     std::iota(parent.begin(), parent.end(), 0u);
-    const auto root = [&](std::uint32_t slot) {
-        while (parent[slot] != slot) slot = parent[slot] = parent[parent[slot]];
-        return slot;
-    };
+    const auto root = [&](std::uint32_t slot) { return union_root(parent, slot); };
     const auto dynamic = [&](std::uint32_t slot) { return bodies_[slot].type_ == BodyType::dynamic; };
     const T apart = T(1e-3) * settings_.sleep_linear_speed;
-    const auto holds = [&](const Contact<T>& c) {
-        return !c.sensor && c.manifold.count > 0 && (c.touching || (within_slop(c) && !separating(c, apart)));
-    };
-    for (const Contact<T>& c : contacts_)
-        if (dynamic(c.a.index) && dynamic(c.b.index) && holds(c)) parent[root(c.a.index)] = root(c.b.index);
+    std::vector<std::uint8_t> holds(contacts_.size(), 0);  // rarely built: only when a body is about to sleep
+    for (std::size_t k = 0; k < contacts_.size(); ++k) {
+        const Contact<T>& c = contacts_[k];
+        holds[k] = !c.sensor && c.manifold.count > 0 && (c.touching || (within_slop(c) && !separating(c, apart)));
+        if (holds[k] && dynamic(c.a.index) && dynamic(c.b.index)) parent[root(c.a.index)] = root(c.b.index);
+    }
     for (const Joint<T>& j : joints_)
         if (joint_active(j) && dynamic(j.a.index) && dynamic(j.b.index)) parent[root(j.a.index)] = root(j.b.index);
     std::vector<std::uint8_t>& held = island_flag_;  // scratch here: wake_touched_islands is done with it
@@ -3133,8 +3136,8 @@ void World<T>::keep_drifting_islands_awake() {
         if (!dynamic(a)) held[root(b)] = 1;
         if (!dynamic(b)) held[root(a)] = 1;
     };
-    for (const Contact<T>& c : contacts_)
-        if (holds(c)) hold(c.a.index, c.b.index);
+    for (std::size_t k = 0; k < contacts_.size(); ++k)
+        if (holds[k]) hold(contacts_[k].a.index, contacts_[k].b.index);
     for (const Joint<T>& j : joints_)
         if (joint_active(j)) hold(j.a.index, j.b.index);
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
