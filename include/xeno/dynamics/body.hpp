@@ -417,9 +417,13 @@ namespace detail {
 /// restore_snapshot asks that the warm-start impulses give a finite velocity change by them; the
 /// joint solver caps its impulses by the same measures (JointConstraint::max_linear_impulse).
 template <class T>
-T spin_per_impulse(const Body<T>& b) {
-    const Mat3<T> i = b.inverse_inertia_local();
+T spin_per_impulse(const Mat3<T>& inverse_inertia) {
+    const Mat3<T>& i = inverse_inertia;
     return max_component(abs(i[0])) + max_component(abs(i[1])) + max_component(abs(i[2]));
+}
+template <class T>
+T spin_per_impulse(const Body<T>& b) {
+    return spin_per_impulse(b.inverse_inertia_local());
 }
 
 /// `spin` is spin_per_impulse(b), taken by the caller, which needs it too (one inverse each).
@@ -471,6 +475,12 @@ void check_mass_properties(const MassProperties<T>& m, T radius, const char* whe
     if (!ok)
         report_invalid(where, "inertia must be finite, symmetric and positive definite (with a finite inverse); Ixx",
                        static_cast<double>(i[0].x));
+    // What a unit impulse does to the body, as spin_per_impulse and speed_per_impulse measure it
+    // (and restore_snapshot checks every stored impulse by): a 1e-307 kg ball (double) has an
+    // inertia with a finite inverse of 1e308 whose rows sum to inf, and no impulse on it restored.
+    if (!std::isfinite(T(1) / m.mass + spin_per_impulse(*try_inverse_inertia(i)) * radius * radius))
+        report_invalid(where, "mass and inertia must be large enough that a unit impulse gives a finite speed; mass",
+                       static_cast<double>(m.mass));
 }
 
 /// Whether `body`'s part `child` is a sphere (a mesh body's "part" is a triangle: never).
