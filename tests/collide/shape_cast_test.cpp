@@ -356,3 +356,35 @@ TEST_CASE_TEMPLATE("regression: shapes exactly touching part without a hit, and 
         CHECK(length(sunk->normal - down) < T(1e-3));
     }
 }
+
+// Regression: from the ends of T's range (a ball at ∓FLT_MAX swept by ±FLT_MAX at a box at the
+// origin) the sweep was trimmed once to where the bounding spheres meet, and that start, rounded
+// at the scale of FLT_MAX, lay 10³¹ m off: the ball was cast from the far side of the box and
+// hit its other face, normal reversed; a box at FLT_MAX / 2 or FLT_MAX beyond a sweep ending at
+// the origin made the cast throw "collide: pose_a.position.x must be finite (got -nan)". The trim
+// now repeats from each trimmed start until the spheres meet over the whole of what is left, and
+// a box farther off than T holds is passed.
+TEST_CASE_TEMPLATE("a ball swept from the ends of the range hits the box face it comes to, or passes a box it cannot reach", T,
+                   float, double) {
+    const T most = std::numeric_limits<T>::max();
+    const Shape<T> ball = Sphere<T>(T(1)), box = Box<T>(T(1), T(1), T(1));
+    struct Sweep {
+        T start, travel, fraction;  // along x; the fraction at which the ball touches the box at the origin
+    };
+    for (const Sweep s : {Sweep{-most, most, T(1)}, Sweep{most, -most, T(1)}, Sweep{-most / 2, most, T(0.5)},
+                          Sweep{most / 2, -most, T(0.5)}, Sweep{-most / 4, most / 2, T(0.5)}}) {
+        CAPTURE(s.start);
+        CAPTURE(s.travel);
+        const T side = s.travel > T(0) ? T(1) : T(-1);  // +x: the ball meets the box's −x face
+        const std::optional<ShapeCastHit<T>> hit =
+            shape_cast(ball, at(s.start, T(0), T(0)), Vec3<T>{s.travel, T(0), T(0)}, box, at(T(0), T(0), T(0)));
+        REQUIRE(hit);
+        CHECK(!hit->initially_overlapping);
+        CHECK(std::abs(hit->fraction - s.fraction) <= T(4) * std::numeric_limits<T>::epsilon());
+        CHECK(length(hit->normal - Vec3<T>{side, T(0), T(0)}) < T(1e-3));
+        CHECK(length(hit->point - Vec3<T>{-side, T(0), T(0)}) < T(1e-3));
+    }
+    // Boxes beyond the sweep's end: half the range on, and past the end of the range.
+    for (const T box_x : {most / 2, most})
+        CHECK_FALSE(shape_cast(ball, at(-most, T(0), T(0)), Vec3<T>{most, T(0), T(0)}, box, at(box_x, T(0), T(0))));
+}

@@ -315,8 +315,8 @@ std::optional<ShapeCastHit<T>> cast_triangle(const ShapeRef<T>& shape, const Tra
         return gjk_cast(support_c, tri.interior_point() - inside_a, size, from, move,
                         [&](const Transform<T>& at) { return collide_pair(shape, at, tri, Transform<T>{}); });
     };
-    return cast_where_spheres_meet(tri.interior_point() - pose_a.position, shape.bounding_radius() + tri.bounding_radius(),
-                                   pose_a, translation, cast);
+    return cast_where_spheres_meet(tri.interior_point(), shape.bounding_radius() + tri.bounding_radius(), pose_a, translation,
+                                   cast);
 }
 
 }  // namespace detail

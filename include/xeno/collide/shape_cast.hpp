@@ -261,16 +261,27 @@ std::optional<ShapeCastHit<T>> gjk_cast(const SupportC& support_c, const Vec3<T>
     return hit;
 }
 
-/// The part [first, last] of a sweep, in fractions of `translation`, in which two spheres of
-/// radii adding up to `reach` meet, the second resting `offset` from the first's start; nothing
-/// when they never do. A translation too long to measure in T (or none) gives the whole sweep.
-/// Where the square of its length overflows (from 1.8e19 m in float, 1.3e154 in double) or
-/// underflows, the length is taken of the translation divided by its largest component: a
-/// whole sweep's tolerance took a shape 2.7 m clear of a floor for one that started inside it.
+/// The part of a sweep in which two spheres meet (sphere_sweep_span): [first, last] in fractions
+/// of the translation, and where the moving one's centre enters and leaves (world).
 template <class T>
-std::optional<std::pair<T, T>> sphere_sweep_span(const Vec3<T>& offset, T reach, const Vec3<T>& translation) {
+struct SweepSpan {
+    T first{}, last{};
+    Vec3<T> entry{}, exit{};
+};
+
+/// The part of a sweep of a sphere from `start` along `translation` in which it meets a sphere
+/// resting at `centre` (radii adding up to `reach`); nothing when they never do. A translation
+/// too long to measure in T (or none) gives the whole sweep. Where the square of its length
+/// overflows (from 1.8e19 m in float, 1.3e154 in double) or underflows, the length is taken of
+/// the translation divided by its largest component: a whole sweep's tolerance took a shape
+/// 2.7 m clear of a floor for one that started inside it. The entry and exit points are taken
+/// from the resting centre, not as start + first × translation: from FLT_MAX that sum is rounded
+/// 10³¹ m off, and a ball was cast from the far side of a box and hit its other face.
+template <class T>
+std::optional<SweepSpan<T>> sphere_sweep_span(const Vec3<T>& start, const Vec3<T>& centre, T reach, const Vec3<T>& translation) {
+    const SweepSpan<T> whole{T(0), T(1), start, start + translation};
     const T largest = std::max({std::abs(translation.x), std::abs(translation.y), std::abs(translation.z)});
-    if (!(largest > T(0)) || !std::isfinite(largest)) return std::pair<T, T>{T(0), T(1)};
+    if (!(largest > T(0)) || !std::isfinite(largest)) return whole;
     T length_t = length(translation);
     Vec3<T> along = length_t > T(0) ? translation / length_t : translation;
     if (!std::isfinite(length_t) || !(length_t > T(0))) {  // its square overflowed or underflowed
@@ -278,36 +289,44 @@ std::optional<std::pair<T, T>> sphere_sweep_span(const Vec3<T>& offset, T reach,
         const T length_scaled = length(scaled);
         length_t = largest * length_scaled;
         along = scaled / length_scaled;
-        if (!std::isfinite(length_t)) return std::pair<T, T>{T(0), T(1)};
+        if (!std::isfinite(length_t)) return whole;
     }
+    const Vec3<T> offset = centre - start;
     const T ahead = dot(offset, along);
-    const T across_sq = length_squared(offset - along * ahead);
+    const Vec3<T> across = offset - along * ahead;  // from the sweep's line to the centre
+    const T across_sq = length_squared(across);
     if (across_sq > reach * reach) return std::nullopt;  // passes beside
     const T half_chord = std::sqrt(reach * reach - across_sq);
-    const T first = std::max((ahead - half_chord) / length_t, T(0)), last = std::min((ahead + half_chord) / length_t, T(1));
-    if (first > last) return std::nullopt;  // stops short of it, or starts past it
-    return std::pair<T, T>{first, last};
+    SweepSpan<T> span = whole;
+    if (ahead - half_chord > T(0)) {
+        span.first = std::min((ahead - half_chord) / length_t, T(1));
+        span.entry = centre - across - along * half_chord;
+    }
+    if (ahead + half_chord < length_t) {
+        span.last = std::max((ahead + half_chord) / length_t, T(0));
+        span.exit = centre - across + along * half_chord;
+    }
+    if (ahead + half_chord < T(0) || ahead - half_chord > length_t) return std::nullopt;  // starts past it, or stops short
+    return span;
 }
 
 /// Runs `cast(from, move)` (a shape cast from pose `from` along `move`) over the part of the
 /// sweep of A from pose_a along `translation` in which A's bounding sphere (about pose_a's
-/// position) meets B's (`reach` the two radii, B's centre `offset` from pose_a's position), and
-/// gives its hit as a fraction of the whole sweep. The cast's tolerance is a fraction of the
-/// problem's size, translation included: over the whole of a long sweep (1e6 m in float, 1e10 m
-/// in double) it exceeded the gap, and a box 4.5 m above the ground was reported overlapping it.
+/// position) meets B's (`reach` the two radii, B's centre at `centre_b`, world), and gives its hit
+/// as a fraction of the whole sweep. The cast's tolerance is a fraction of the problem's size,
+/// translation included: over the whole of a long sweep (1e6 m in float, 1e10 m in double) it
+/// exceeded the gap, and a box 4.5 m above the ground was reported overlapping it.
 template <class T, class Cast>
-std::optional<ShapeCastHit<T>> cast_where_spheres_meet(const Vec3<T>& offset, T reach, const Transform<T>& pose_a,
+std::optional<ShapeCastHit<T>> cast_where_spheres_meet(const Vec3<T>& centre_b, T reach, const Transform<T>& pose_a,
                                                        const Vec3<T>& translation, const Cast& cast) {
     // The radii are bounds about each shape's centre; the slack covers their round-off.
-    const std::optional<std::pair<T, T>> span = sphere_sweep_span(offset, reach * (T(1) + T(1e-3)), translation);
+    const std::optional<SweepSpan<T>> span = sphere_sweep_span(pose_a.position, centre_b, reach * (T(1) + T(1e-3)), translation);
     if (!span) return std::nullopt;
-    const auto [first, last] = *span;
-    if (first == T(0) && last == T(1)) return cast(pose_a, translation);
-    std::optional<ShapeCastHit<T>> hit =
-        cast(Transform<T>{pose_a.position + translation * first, pose_a.orientation}, translation * (last - first));
+    if (span->first == T(0) && span->last == T(1)) return cast(pose_a, translation);
+    std::optional<ShapeCastHit<T>> hit = cast(Transform<T>{span->entry, pose_a.orientation}, span->exit - span->entry);
     if (!hit) return hit;
-    if (first > T(0)) hit->initially_overlapping = false;  // the spheres only meet there: round-off
-    hit->fraction = std::min(first + hit->fraction * (last - first), T(1));
+    if (span->first > T(0)) hit->initially_overlapping = false;  // the spheres only meet there: round-off
+    hit->fraction = std::min(span->first + hit->fraction * (span->last - span->first), T(1));
     return hit;
 }
 
@@ -342,8 +361,9 @@ std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>&
         return detail::gjk_cast(support_c, centre_b - centre_a, size, from, move,
                                 [&](const Transform<T>& at) { return collide(a, at, b, pose_b); });
     };
-    return detail::cast_where_spheres_meet(pose_b.position - pose_a.position, bounding_radius(a) + bounding_radius(b), pose_a,
-                                           translation, cast);
+    // B's centre farther off than T holds: no translation (its components within T) reaches it.
+    if (!detail::offset_is_finite(pose_a, pose_b)) return std::nullopt;
+    return detail::cast_where_spheres_meet(pose_b.position, bounding_radius(a) + bounding_radius(b), pose_a, translation, cast);
 }
 
 /// A compound A (posed by its centre-of-mass frame, as a body) swept against B: the first touch of
