@@ -466,3 +466,48 @@ TEST_CASE_TEMPLATE("regression: rays from near the end of the range hit round sh
             CHECK(hit->normal.x < T(-0.79));  // −0.8 at y = 0.6 on the sphere; the cone's side leans 27° up
         }
 }
+
+// Regression: TriangleMesh::raycast, HeightField::raycast and raycast(box, ray), public all three,
+// took any ray: a zero or NaN direction, a NaN origin or a max_distance of 0 gave a silent miss,
+// and a direction of length 2 halved the distances. They now refuse what raycast(shape, pose, ray)
+// refuses (detail::checked_ray), naming themselves. A box that is empty (Aabb{}, min > max) or
+// has a NaN bound was hit at distance 0 by every ray: it is never hit.
+TEST_CASE_TEMPLATE("regression: a mesh's, a heightfield's and a box's ray casts check the ray, and an empty box is never hit", T,
+                   float, double) {
+    const T nan = std::numeric_limits<T>::quiet_NaN();
+    const TriangleMesh<T> mesh({{T(-5), T(0), T(-5)}, {T(-5), T(0), T(5)}, {T(5), T(0), T(5)}, {T(5), T(0), T(-5)}},
+                               {{0, 1, 2}, {0, 2, 3}});
+    const HeightField<T> field(3, 3, std::vector<T>(9, T(0)), T(1));
+    const Aabb<T> box = Aabb<T>::from_center(Vec3<T>::zero(), Vec3<T>{T(1), T(1), T(1)});
+    const Vec3<T> above{T(0.25), T(3), T(0.25)}, down{T(0), T(-1), T(0)};
+    const std::vector<Ray<T>> bad = {
+        {above, down, T(0)},
+        {above, down, nan},
+        {{nan, T(3), T(0)}, down, T(10)},
+        {above, {T(0), nan, T(0)}, T(10)},
+        {above, Vec3<T>::zero(), T(10)},
+        {above, {T(0), T(-2), T(0)}, T(10)},
+    };
+    for (std::size_t i = 0; i < bad.size(); ++i) {
+        CAPTURE(i);
+        CHECK_THROWS_AS(mesh.raycast(bad[i]), InvalidArgument);
+        CHECK_THROWS_AS(field.raycast(bad[i]), InvalidArgument);
+        CHECK_THROWS_AS(raycast(box, bad[i]), InvalidArgument);
+    }
+    const Ray<T> good{above, down, T(10)};
+    const auto on_mesh = mesh.raycast(good);
+    const auto on_field = field.raycast(good);
+    REQUIRE(on_mesh);
+    REQUIRE(on_field);
+    CHECK(near(on_mesh->first.distance, T(3)));
+    CHECK(near(on_field->first.distance, T(3)));
+    const std::optional<T> into_box = raycast(box, good);
+    REQUIRE(into_box);
+    CHECK(near(*into_box, T(2)));
+    Aabb<T> not_a_number = box;
+    not_a_number.min.y = nan;
+    for (const Aabb<T>& nothing : {Aabb<T>{}, Aabb<T>{box.max, box.min}, not_a_number}) {
+        CHECK_FALSE(raycast(nothing, good));
+        CHECK_FALSE(raycast(nothing, Ray<T>{Vec3<T>::zero(), down, T(10)}));
+    }
+}

@@ -20,10 +20,10 @@
 namespace xeno {
 
 /// A ray from origin along the unit direction, at most max_distance long (metres). The ray casts
-/// (raycast(shape, pose, ray), a mesh's, the world's) take a finite origin, a direction of length
-/// 1 within 1e-3, which they normalise first (so distances are metres), and a max_distance > 0
-/// (ScalarTraits<T>::max or +∞ for no limit); anything else is an InvalidArgument
-/// (detail::checked_ray).
+/// (raycast(shape, pose, ray), raycast(box, ray), a mesh's or heightfield's, the world's) take a
+/// finite origin, a direction of length 1 within 1e-3, which they normalise first (so distances
+/// are metres), and a max_distance > 0 (ScalarTraits<T>::max or +∞ for no limit); anything else
+/// is an InvalidArgument (detail::checked_ray).
 template <class T>
 struct Ray {
     Vec3<T> origin{};
@@ -359,9 +359,13 @@ bool contains_point(const Shape<T>& shape, const Transform<T>& pose, const Vec3<
     return detail::contains_local(shape, pose.inverse_apply(point));
 }
 
-/// Entry distance of a ray into a box (slab test), if it enters within max_distance.
+namespace detail {
+/// raycast(box, ray) on a checked ray (checked_ray).
 template <class T>
-std::optional<T> raycast(const Aabb<T>& box, const Ray<T>& ray) {
+std::optional<T> raycast_box(const Aabb<T>& box, const Ray<T>& ray) {
+    // Empty (min > max: Aabb{} is +inf … −inf) or with a NaN bound: nothing to hit. Every ray
+    // entered Aabb{} at 0, its slabs' infinities swapped into a range that holds everything.
+    if (!(box.min.x <= box.max.x && box.min.y <= box.max.y && box.min.z <= box.max.z)) return std::nullopt;
     T enter = T(0), exit = ray.max_distance;
     for (int i = 0; i < 3; ++i) {
         const T o = ray.origin[i], d = ray.direction[i];
@@ -376,6 +380,15 @@ std::optional<T> raycast(const Aabb<T>& box, const Ray<T>& ray) {
         if (enter > exit) return std::nullopt;
     }
     return enter;
+}
+}  // namespace detail
+
+/// Entry distance of a ray into a box (slab test), if it enters within max_distance; 0 from
+/// inside. An empty box (or one with a NaN bound) is never hit. The ray is checked as
+/// raycast(shape, pose, ray) checks it (InvalidArgument).
+template <class T>
+std::optional<T> raycast(const Aabb<T>& box, const Ray<T>& ray) {
+    return detail::raycast_box(box, detail::checked_ray(ray, "raycast(box, ray)"));
 }
 
 namespace f32 {

@@ -60,6 +60,7 @@ public:
     template <class F, class Keep = detail::KeepAll>
     void for_each_triangle(const Aabb<T>& box, F&& f, Keep keep = {}) const;
     /// The nearest hit of a ray (local frame) on the surface from either side, with the triangle.
+    /// The ray is checked as raycast(shape, pose, ray) checks it (InvalidArgument).
     std::optional<std::pair<RayHit<T>, std::uint32_t>> raycast(const Ray<T>& ray) const;
     std::size_t memory_bytes() const { return heights_.capacity() * sizeof(T) + holes_.capacity(); }
 
@@ -250,18 +251,18 @@ void HeightField<T>::for_each_triangle(const Aabb<T>& box, F&& f, Keep keep) con
 // in the cells on both sides: detail::ray_triangle is watertight only among the triangles it sees.
 template <class T>
 std::optional<std::pair<RayHit<T>, std::uint32_t>> HeightField<T>::raycast(const Ray<T>& ray) const {
-    Ray<T> r = ray;
+    Ray<T> r = detail::checked_ray(ray, "HeightField::raycast");
     const T extent = length(bounds_.max - bounds_.min) + spacing_;
     const T place = std::max({std::abs(r.origin.x), std::abs(r.origin.y), std::abs(r.origin.z)});
     const T pad = spacing_ * T(1e-3) + T(64) * ScalarTraits<T>::epsilon * (place + extent);
-    const std::optional<T> enter = xeno::raycast(bounds_.expanded(pad), r);
+    const std::optional<T> enter = detail::raycast_box(bounds_.expanded(pad), r);
     if (!enter) return std::nullopt;
     // Clip the ray to the field's box so its own box is finite.
     Aabb<T> path;
     path.merge(r.origin + r.direction * *enter);
     const T reach = std::min(r.max_distance, *enter + extent);
     path.merge(r.origin + r.direction * reach);
-    const detail::RayFrame<T> frame(ray);
+    const detail::RayFrame<T> frame(r);
     std::optional<std::pair<RayHit<T>, std::uint32_t>> best;
     path = path.expanded(pad + T(64) * ScalarTraits<T>::epsilon * *enter);
     for_each_triangle(path, [&](std::uint32_t k, const MeshTriangle<T>& t) {

@@ -105,7 +105,8 @@ public:
     /// in a fixed order.
     template <class F, class Keep = detail::KeepAll>
     void for_each_triangle(const Aabb<T>& box, F&& f, Keep keep = {}) const;
-    /// The nearest hit of a ray (local frame) on either side of any triangle, with the triangle.
+    /// The nearest hit of a ray (local frame) on either side of any triangle, with the triangle. The
+    /// ray is checked as raycast(shape, pose, ray) checks it (InvalidArgument).
     std::optional<std::pair<RayHit<T>, std::uint32_t>> raycast(const Ray<T>& ray) const;
     /// Bytes held, for the benchmark's memory per triangle.
     std::size_t memory_bytes() const {
@@ -409,9 +410,9 @@ struct RaySlabs {
 
 template <class T>
 std::optional<std::pair<RayHit<T>, std::uint32_t>> TriangleMesh<T>::raycast(const Ray<T>& ray) const {
-    Ray<T> r = ray;
-    const detail::RayFrame<T> frame(ray);
-    const detail::RaySlabs<T> slabs(ray, nodes_[0].box);
+    Ray<T> r = detail::checked_ray(ray, "TriangleMesh::raycast");
+    const detail::RayFrame<T> frame(r);
+    const detail::RaySlabs<T> slabs(r, nodes_[0].box);
     std::optional<std::pair<RayHit<T>, std::uint32_t>> best;
     std::uint32_t stack[64];
     int top = 0;
