@@ -21,6 +21,14 @@ int scene(const std::string& name) {
     return -1;
 }
 
+// The column scene in one precision (0 float, 1 double, 2 both), half a second in.
+void load_settled_column(int precision) {
+    const int column = scene("column");
+    REQUIRE(column >= 0);
+    REQUIRE(xw_load(column, precision) == 0);
+    xw_step(30);
+}
+
 bool finite_position(int precision, int body) {
     for (int k = 0; k < 3; ++k)
         if (!std::isfinite(xw_body_position(precision, body, k))) return false;
@@ -67,11 +75,7 @@ TEST_CASE("float and double side by side: the same scene, apart only by rounding
 }
 
 TEST_CASE("a body picked by a ray follows the drag, and lets go") {
-    int column = -1;
-    for (int s = 0; s < xw_scene_count(); ++s)
-        if (std::string(xw_scene_name(s)) == "column") column = s;
-    REQUIRE(xw_load(column, 2) == 0);
-    xw_step(30);
+    load_settled_column(2);
     // A ray from the side at the top box's height (the column of 10 unit boxes, top at y = 9.5).
     REQUIRE(xw_pick(0, 9.5, 10, 0, 0, -1) == 1);
     const int body = xw_grabbed_body();
@@ -101,13 +105,10 @@ TEST_CASE("bad arguments are refused") {
 
 // The WebAssembly module is built without exceptions: a throw from the library ends the page, so
 // every call below must be refused (or cut) at the interface, not thrown on inside.
-TEST_CASE("a pick from an origin that is not finite or beyond +-1e6 m is refused; any finite direction picks") {
-    const int column = scene("column");
-    REQUIRE(column >= 0);
+TEST_CASE("a pick from an origin that is not finite or beyond +-1e6 m is refused, and any finite direction picks") {
     for (int precision = 0; precision <= 2; ++precision) {
         CAPTURE(precision);
-        REQUIRE(xw_load(column, precision) == 0);
-        xw_step(30);
+        load_settled_column(precision);
         CHECK(xw_pick(NAN, 9.5, 10, 0, 0, -1) == 0);
         CHECK(xw_pick(0, INFINITY, 10, 0, 0, -1) == 0);
         CHECK(xw_pick(1e300, 9.5, 10, 0, 0, -1) == 0);  // inf once float
@@ -123,12 +124,9 @@ TEST_CASE("a pick from an origin that is not finite or beyond +-1e6 m is refused
 }
 
 TEST_CASE("a drag target beyond +-1e6 m is refused in every precision, and one at the bound steps") {
-    const int column = scene("column");
-    REQUIRE(column >= 0);
     for (int precision = 0; precision <= 2; ++precision) {
         CAPTURE(precision);
-        REQUIRE(xw_load(column, precision) == 0);
-        xw_step(30);
+        load_settled_column(precision);
         REQUIRE(xw_pick(0, 9.5, 10, 0, 0, -1) == 1);
         const int body = xw_grabbed_body();
         const double target[3] = {xw_grab_point(0), xw_grab_point(1), xw_grab_point(2)};
@@ -149,7 +147,7 @@ TEST_CASE("a drag target beyond +-1e6 m is refused in every precision, and one a
     }
 }
 
-TEST_CASE("a negative step count does nothing; more than 600 steps a call are cut to 600") {
+TEST_CASE("a negative step count does nothing, and more than 600 steps a call are cut to 600") {
     const int column = scene("column");
     REQUIRE(column >= 0);
     REQUIRE(xw_load(column, 2) == 0);
