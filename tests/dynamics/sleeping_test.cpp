@@ -9,6 +9,8 @@
 #include "support/approx.hpp"
 #include "support/sim.hpp"
 
+#include "scenes/all.hpp"
+
 #include <algorithm>
 
 using namespace xeno;
@@ -444,6 +446,25 @@ TEST_CASE_TEMPLATE("regression: a box sliding up a shallow slope turns back at t
     const double expected = v0 * t - 0.5 * 9.81 * std::sin(theta) * t * t;  // -7.12 m
     CHECK(w.body(box).awake());
     CHECK(std::abs(double(w.body(box).position().x) - expected) < 0.02 * std::abs(expected));
+}
+
+// Regression: the wake test's group speed (World::measure_group_speeds) counted what gravity adds
+// over a step, 16 cm/s, for every awake body, at rest or not: each awake box of a settled pile
+// reached 5 mm further (2 g dt²) and woke its sleeping neighbours, which woke it back. Of the 64
+// boxes of the sleeping-pile scene 48 never slept (16 asleep at 30 s); before the group speed,
+// all slept by 5 s, and now again (63 at 4 s, all at 5 s).
+TEST_CASE_TEMPLATE("regression: the sleeping-pile scene's 64 boxes all fall asleep", T, float, double) {
+    World<T> w;
+    scenes::build(std::string("sleeping-pile"), w);
+    int asleep = 0, dynamic = 0;
+    test::simulate(w, T(6));
+    w.for_each_body([&](BodyId, const Body<T>& b) {
+        if (b.type() != BodyType::dynamic) return;
+        ++dynamic;
+        asleep += b.awake() ? 0 : 1;
+    });
+    CHECK(dynamic == 64);
+    CHECK(asleep == dynamic);
 }
 
 TEST_CASE_TEMPLATE("regression: in zero gravity a ball struck by a light one drifts on below the sleep speed", T, float, double) {
