@@ -419,35 +419,6 @@ TEST_CASE_TEMPLATE("a box sliding slowly from rest down a ramp does not fall asl
     }
 }
 
-// Regression: a frictionless box sent up a 0.5° slope at 0.5 m/s is under the sleep speed
-// (5 cm/s) for 1.2 s about the top of its travel. Its contact slides, which kept its island
-// awake only for the step it was seen sliding: at the top the slip is under a tenth of the sleep
-// speed for 7 steps, its clock had run out, and it slept there, 1.46 m up, for good. A sliding
-// contact now starts the clocks again. Awake, the box comes back down as the closed form says:
-// x(t) = v₀ t − g sin θ t² / 2 (gravity is tilted by θ over a level floor: the same motion as
-// on a ramp). A ball rolled up the same slope still sleeps at the top (docs/features.md).
-TEST_CASE_TEMPLATE("regression: a box sliding up a shallow slope turns back at the top instead of sleeping there", T, float,
-                   double) {
-    const double pi = 3.14159265358979323846, theta = 0.5 * pi / 180, v0 = 0.5, t = 20;
-    WorldSettings<T> s;  // the defaults but for the tilt
-    s.gravity = {T(-9.81 * std::sin(theta)), T(-9.81 * std::cos(theta)), T(0)};
-    World<T> w(s);
-    BodyDef<T> floor;
-    floor.type = BodyType::static_body;
-    floor.position = {T(0), T(-1), T(0)};
-    floor.material.friction = T(0);
-    w.create_body(Box<T>(T(50), T(1), T(50)), floor);
-    BodyDef<T> d;
-    d.material.friction = T(0);
-    d.position = {T(0), T(0.25), T(0)};
-    d.linear_velocity = {T(v0), T(0), T(0)};
-    const BodyId box = w.create_body(Box<T>(T(0.25), T(0.25), T(0.25)), d);
-    test::simulate(w, T(t));
-    const double expected = v0 * t - 0.5 * 9.81 * std::sin(theta) * t * t;  // -7.12 m
-    CHECK(w.body(box).awake());
-    CHECK(std::abs(double(w.body(box).position().x) - expected) < 0.02 * std::abs(expected));
-}
-
 // Regression: the wake test's group speed (World::measure_group_speeds) counted what gravity adds
 // over a step, 16 cm/s, for every awake body, at rest or not: each awake box of a settled pile
 // reached 5 mm further (2 g dt²) and woke its sleeping neighbours, which woke it back. Of the 64

@@ -2970,12 +2970,10 @@ void World<T>::discard_overflowed_solve() {
 // speeds up slowly from rest (a box on a ramp a little steeper than its friction angle: 0.04
 // m/s² at 0.2° past it) stays under the sleep speeds for the whole sleep time, and sleeping
 // would stop it for good. Friction at the bound alone does not tell: a domino that slid until
-// it leans on the next rests with its friction at the bound and slips at 1e-7 m/s. A sliding
-// pair starts its bodies' clocks again (keep_moving_islands_awake), so a pair that slides for a
-// moment (a pile settling) delays its island's sleep by the sleep time: kept awake only for the
-// steps it was seen sliding, a frictionless box sent up a 0.5° slope slept at the top of its
-// travel, where its slip was under a tenth of the sleep speed for 7 steps. The bound is met to
-// round-off when the row clamps (the solver scales the impulse onto it); 1e-3 below it counts.
+// it leans on the next rests with its friction at the bound and slips at 1e-7 m/s. A pair that
+// slides only for a moment (a pile settling) delays its island's sleep by that moment, as the
+// island's clocks keep running. The bound is met to round-off when the row clamps (the solver
+// scales the impulse onto it); 1e-3 below it counts.
 template <class T>
 bool World<T>::sliding(const Contact<T>& c) const {
     const Manifold<T>& m = c.manifold;
@@ -3042,8 +3040,8 @@ void World<T>::run_sleep_clocks(T dt) {
 }
 
 /// An island that slides (World::sliding) or touches a moving kinematic body stays awake: its
-/// least clock is set back to 0, and a sliding pair's bodies start their clocks again. The slide is looked at only where an awake
-/// island would otherwise sleep now, rarely a step.
+/// least clock is set back to 0. The slide is looked at only where an awake island would
+/// otherwise sleep now, rarely a step.
 template <class T>
 void World<T>::keep_moving_islands_awake() {
     std::vector<T>& island_min = island_sleep_time_;
@@ -3055,7 +3053,7 @@ void World<T>::keep_moving_islands_awake() {
         if (!c.touching) continue;
         if ((would_sleep(c.a.index) || would_sleep(c.b.index)) && sliding(c))
             for (const std::uint32_t i : {c.a.index, c.b.index})
-                if (bodies_[i].type_ == BodyType::dynamic) island_min[island_root(i)] = T(0), bodies_[i].sleep_time_ = T(0);
+                if (bodies_[i].type_ == BodyType::dynamic) island_min[island_root(i)] = T(0);
         for (const auto& [k, d] : {std::pair{c.a.index, c.b.index}, std::pair{c.b.index, c.a.index}}) {
             const Body<T>& kin = bodies_[k];
             if (kin.type_ == BodyType::kinematic &&
