@@ -2188,9 +2188,9 @@ bool World<T>::closes_within_step(const Contact<T>& c, T dt, T struck_speed) con
     return false;
 }
 
-/// Per slot of an active body, in island_sleep_time_ (scratch until update_sleep): the fastest
-/// any point of its group can move this step, where a group is the active bodies joined by
-/// contacts with points (speculative ones too) and by joints. A body at rest beside a sleeper
+/// Per slot of an active body, in island_sleep_time_ (scratch until update_sleep): the speed of
+/// the fastest point of its group at the start of the step, where a group is the active bodies
+/// joined by contacts with points (speculative ones too) and by joints. A body at rest beside a sleeper
 /// can be struck within the step and leave at up to twice the striker's speed (an elastic hit
 /// on a lighter body), which its own velocity before the solve does not show: a box resting
 /// 1 cm from a sleeper and struck at 10 m/s was driven 7 cm into it, the sleeper not woken.
