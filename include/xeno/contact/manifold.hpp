@@ -172,6 +172,21 @@ void Manifold<T>::merge_single(const ManifoldPoint<T>& fresh, const Vec3<T>& nor
         if (i != drop) points[static_cast<std::size_t>(k++)] = all[static_cast<std::size_t>(i)];
 }
 
+namespace detail {
+/// Halves `times` times every impulse the manifold carries to the next step (Body::impulse_halvings_).
+template <class T>
+void halve_impulses(Manifold<T>& m, int times) {
+    if (times == 0) return;
+    for (ContactPoint<T>& p : m.points) {
+        p.normal_impulse = halved(p.normal_impulse, times);
+        p.max_normal_impulse = halved(p.max_normal_impulse, times);
+        p.step_impulse = halved(p.step_impulse, times);
+    }
+    m.friction_impulse = halved(m.friction_impulse, times);
+    m.twist_impulse = halved(m.twist_impulse, times);
+}
+}  // namespace detail
+
 namespace f32 {
 using Manifold = xeno::Manifold<float>;
 using ContactPoint = xeno::ContactPoint<float>;

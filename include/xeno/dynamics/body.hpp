@@ -279,6 +279,10 @@ private:
     bool enabled_ = true;    ///< in the simulation (World::set_enabled)
     bool isotropic_ = true;  ///< inertia ∝ identity: no gyroscopic term
     bool moved_ = false;     ///< teleported since the last step (broad phase must see it)
+    // How many times the next step halves the impulses cached in the body's contacts and joints
+    // (255: drops them): the powers of two its response to an impulse grew by since they were
+    // made (set_mass_properties; World::scale_lighter_impulses).
+    std::uint8_t impulse_halvings_ = 0;
     Geometry geometry_kind_ = Geometry::convex;
 };
 
@@ -567,7 +571,16 @@ void Body<T>::set_mass_properties(const MassProperties<T>& m) {
     if (type_ != BodyType::dynamic)
         detail::report_invalid(where, "only dynamic bodies have mass; body type", static_cast<double>(type_));
     detail::check_mass_properties(m, bounding_radius(), where);
-    inverse_mass_ = T(1) / m.mass;
+    // The impulses cached for the next step's warm start were sized for the old mass: on a body
+    // made 10⁸ times lighter they threw it off the ground it rested on. They shrink by the
+    // powers of two the response to an impulse grows by (linear or spin, the larger).
+    const T old_spin = detail::spin_per_impulse(inverse_inertia_local());
+    const T new_inverse_mass = T(1) / m.mass;
+    const T new_spin = detail::spin_per_impulse(*detail::try_inverse_inertia(m.inertia));
+    const T growth = std::max(new_inverse_mass / inverse_mass_, new_spin / old_spin);  // inf from no mass
+    const int halvings = growth >= T(2) ? (std::isfinite(growth) ? std::ilogb(growth) : 255) : 0;
+    impulse_halvings_ = static_cast<std::uint8_t>(std::min(255, impulse_halvings_ + halvings));
+    inverse_mass_ = new_inverse_mass;
     inertia_local_ = m.inertia;
     const T mean = trace(m.inertia) / T(3);
     isotropic_ = length(m.inertia[0] - Vec3<T>::unit_x() * mean) + length(m.inertia[1] - Vec3<T>::unit_y() * mean) +

@@ -217,6 +217,17 @@ void cap_joint_impulses(Joint<T>& j, const JointConstraint<T>& c) {
     j.swing_impulse = std::min(j.swing_impulse, c.max_angular_impulse);
 }
 
+/// Halves `times` times every impulse joint j carries to the next step (Body::impulse_halvings_).
+template <class T>
+void halve_impulses(Joint<T>& j, int times) {
+    if (times == 0) return;
+    j.linear_impulse = halved(j.linear_impulse, times);
+    j.angular_impulse = halved(j.angular_impulse, times);
+    j.axial_impulse = halved(j.axial_impulse, times);
+    j.motor_impulse = halved(j.motor_impulse, times);
+    j.swing_impulse = halved(j.swing_impulse, times);
+}
+
 /// −[r]× M [r]×, the rotational part of a point row's 3×3 effective mass.
 template <class T>
 Mat3<T> point_mass_term(const Vec3<T>& r, const Mat3<T>& inv_inertia) {

@@ -130,13 +130,14 @@ bool box_ok(const Aabb<T>& b) {
 }
 
 constexpr std::uint32_t kSnapshotMagic = 0x4F4E4558;  // "XENO"
-constexpr std::uint32_t kSnapshotVersion = 8;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
+constexpr std::uint32_t kSnapshotVersion = 9;         // 2: WorldSettings::max_contact_pairs; 3: Body enabled and density,
                                                       // the last substep, prismatic and swing-twist joints; 4: the
                                                       // pose each contact's manifold was made at,
                                                       // WorldSettings::reuse_contacts; 5: static_contact_damping_ratio,
                                                       // first_relax_iterations; 6: each body's rest pose;
                                                       // 7: each contact's twist lever and its key;
-                                                      // 8: the parts of a pending event
+                                                      // 8: the parts of a pending event;
+                                                      // 9: each body's impulse halvings
 
 template <class T>
 void write_shape(ByteWriter& w, const Shape<T>& shape) {
@@ -238,6 +239,9 @@ struct SnapshotAccess {
     static void check_pending_events(const World<T>& w);
     static bool linear_ok(const World<T>& w, T impulse, std::uint32_t a, std::uint32_t b);
     static bool angular_ok(const World<T>& w, T impulse, std::uint32_t a, std::uint32_t b);
+    static int pending_halvings(const World<T>& w, std::uint32_t a, std::uint32_t b) {
+        return std::max(w.bodies_[a].impulse_halvings_, w.bodies_[b].impulse_halvings_);
+    }
     static T magnitude(const Vec3<T>& v);
     static bool living(const World<T>& w, BodyId id);
 
@@ -289,7 +293,7 @@ struct SnapshotAccess {
             w.put(b.rest_position_), w.put(b.rest_orientation_);
             w.put(b.user_data_), w.put(b.layer_), w.put(b.mask_), w.put(b.type_);
             w.put(b.awake_), w.put(b.allow_sleep_), w.put(b.fast_), w.put(b.sensor_), w.put(b.isotropic_), w.put(b.moved_);
-            w.put(b.enabled_);
+            w.put(b.enabled_), w.put(b.impulse_halvings_);
         }
         w.put_vector(world.free_slots_);
         w.put_vector(world.bounds_);
@@ -349,6 +353,7 @@ struct SnapshotAccess {
         b.awake_ = r.get_bool(), b.allow_sleep_ = r.get_bool(), b.fast_ = r.get_bool(), b.sensor_ = r.get_bool();
         b.isotropic_ = r.get_bool(), b.moved_ = r.get_bool();
         b.enabled_ = r.get_bool();
+        b.impulse_halvings_ = r.get<std::uint8_t>();
     }
 
     static void restore(World<T>& world, const std::vector<std::uint8_t>& bytes) {
@@ -609,7 +614,9 @@ void SnapshotAccess<T>::check_contact(const World<T>& w, std::size_t k) {
         };
         if (!(key(p) < key(c))) detail::report_corrupt("contacts are not sorted by body pair and part; contact", k);
     }
-    const Manifold<T>& m = c.manifold;
+    // The impulses as the next step takes them: halved for a body made lighter (Body::impulse_halvings_).
+    Manifold<T> m = c.manifold;
+    detail::halve_impulses(m, pending_halvings(w, c.a.index, c.b.index));
     if (m.count < 0 || m.count > Manifold<T>::capacity)
         detail::report_corrupt("a manifold's point count is not 0 … 4; contact", k);
     const std::uint32_t a = c.a.index, b = c.b.index;
@@ -657,7 +664,7 @@ void SnapshotAccess<T>::check_joints(const World<T>& w) {
 
 template <class T>
 void SnapshotAccess<T>::check_joint(const World<T>& w, std::size_t k) {
-    const Joint<T>& j = w.joints_[k];
+    Joint<T> j = w.joints_[k];
     if (!detail::raw_bool_ok(j.alive) || !detail::raw_bool_ok(j.enable_limit) || !detail::raw_bool_ok(j.enable_motor) ||
         !detail::raw_bool_ok(j.collide_connected))
         detail::report_corrupt("a joint's bool byte is neither 0 nor 1; joint", k);
@@ -669,6 +676,7 @@ void SnapshotAccess<T>::check_joint(const World<T>& w, std::size_t k) {
     if (w.bodies_[j.a.index].type_ == BodyType::static_body && w.bodies_[j.b.index].type_ == BodyType::static_body)
         detail::report_corrupt("a joint joins two static bodies; joint", k);
     const std::uint32_t a = j.a.index, b = j.b.index;
+    detail::halve_impulses(j, pending_halvings(w, a, b));  // as the next step takes them (check_contact)
     bool ok = is_finite(j.local_anchor_a) && is_finite(j.local_anchor_b) && is_finite(j.local_axis_a) &&
               is_finite(j.local_axis_b) && is_finite(j.local_ref_a) && is_finite(j.local_ref_b) &&
               detail::unit_quat(j.relative_rotation) && std::isfinite(j.length) && std::isfinite(j.lower_angle) &&

@@ -632,6 +632,7 @@ private:
     }
     detail::BodyIntegration<T> integration_constants(const Body<T>& b, const detail::SolverMass<T>& s, T h) const;
     void keep_poses_and_update_bounds(T dt);
+    void scale_lighter_impulses();
     void narrow_phase(T dt);
     void classify_pairs(T dt);
     void collide_on_workers(T dt);
@@ -992,6 +993,7 @@ BodyId World<T>::create_body_impl(std::shared_ptr<const Shape<T>> shape, std::sh
     b.density_ = def.density;
     if (def.type == BodyType::dynamic) {
         b.set_mass_properties(mass);
+        b.impulse_halvings_ = 0;  // from no mass, but it has no contact or joint yet
         if (def.mass > T(0)) b.density_ = def.mass / unit_mass(b.convex_shape(), b.compound()).mass;
     }
     b.moved_ = true;
@@ -1375,7 +1377,7 @@ void World<T>::keep_poses_and_update_bounds(T dt) {
     const bool all = early_out_.size() != bodies_.size() || settings_.speculative_distance != bounds_margin_;
     if (all) early_out_.resize(bodies_.size()), bounds_asleep_.assign(bodies_.size(), 0);
     if (retouched_.size() != bodies_.size()) retouched_.assign(bodies_.size(), 0);
-    std::atomic<bool> any_retouched{false};
+    std::atomic<bool> any_retouched{false}, any_lighter{false};
     bounds_margin_ = settings_.speculative_distance;
     const auto place_bound = [&](std::uint32_t i, const Body<T>& b) {
         if (b.mesh() || b.compound()) early_out_.clear(i);
@@ -1387,6 +1389,7 @@ void World<T>::keep_poses_and_update_bounds(T dt) {
                 Body<T>& b = bodies_[i];
                 if (!b.alive_) continue;
                 previous_pose_[i] = b.transform();
+                if (b.impulse_halvings_ != 0) any_lighter.store(true, std::memory_order_relaxed);
                 if (!b.enabled_) continue;  // a disabled body's box stays empty
                 if (b.type_ == BodyType::static_body && !b.moved_) {
                     if (all) place_bound(i, b);
@@ -1413,6 +1416,22 @@ void World<T>::keep_poses_and_update_bounds(T dt) {
     if (any_retouched.load(std::memory_order_relaxed))
         for (std::uint32_t i = 0; i < bodies_.size(); ++i)
             if (retouched_[i] != 0) retouched_[i] = 0, wake_neighbours_of(i);
+    if (any_lighter.load(std::memory_order_relaxed)) scale_lighter_impulses();
+}
+
+// A body made lighter (Body::set_mass_properties) would get from its contacts' and joints'
+// cached impulses a warm start sized for its old mass: each is halved as many times as the
+// lighter side asks (Body::impulse_halvings_), exactly (powers of two), before the narrow phase
+// carries them over. Once per step in which some body's mass fell, over every contact and joint.
+template <class T>
+void World<T>::scale_lighter_impulses() {
+    const auto halvings = [&](BodyId a, BodyId b) {
+        return std::max(bodies_[a.index].impulse_halvings_, bodies_[b.index].impulse_halvings_);
+    };
+    for (Contact<T>& c : contacts_) detail::halve_impulses(c.manifold, halvings(c.a, c.b));
+    for (Joint<T>& j : joints_)
+        if (j.alive) detail::halve_impulses(j, halvings(j.a, j.b));
+    for (Body<T>& b : bodies_) b.impulse_halvings_ = 0;
 }
 
 // The queries' tree holds each body's current box: after the step, every body whose pose changed

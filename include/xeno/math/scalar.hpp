@@ -55,6 +55,13 @@ bool approx_equal(T a, T b, T relative = ScalarTraits<T>::relative_tolerance, T 
     return diff <= absolute || diff <= relative * scale;
 }
 
+/// x halved `times` times, exactly (a power of two), and 0 from 255 halvings on (the cached
+/// impulses of a body that got lighter, Body::impulse_halvings_).
+template <class T>
+T halved(T x, int times) {
+    return times >= 255 ? T(0) : std::ldexp(x, -times);
+}
+
 /// Degrees to radians.
 template <class T>
 constexpr T radians(T degrees) {
