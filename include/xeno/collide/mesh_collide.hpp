@@ -374,9 +374,8 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
     // A capsule or a cylinder lying on its side: its points under its axis.
     const bool round_side = std::holds_alternative<Capsule<T>>(convex) || std::holds_alternative<Cylinder<T>>(convex);
     const Vec3<T> axis = pose.apply_direction(Vec3<T>::unit_y());
-    const auto add = [&](std::uint32_t k, const ContactManifold<T>& found) {
-        ContactManifold<T> c = found;
-        if (round_side) detail::move_points_under_the_axis(c, centre, axis);
+    // Triangle k's manifold joins the group of its normal (within same_normal), or starts one.
+    const auto group_up = [&](std::uint32_t k, const ContactManifold<T>& c) {
         detail::NormalGroup<T>* group = nullptr;
         for (detail::NormalGroup<T>& g : groups)
             if (dot(g.normal, c.normal) >= same_normal) {
@@ -389,6 +388,12 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
             group->normal = c.normal;
         }
         group->add(c, k, size);
+    };
+    const auto add = [&](std::uint32_t k, const ContactManifold<T>& found) {
+        if (!round_side) return group_up(k, found);  // copied only to be changed
+        ContactManifold<T> c = found;
+        detail::move_points_under_the_axis(c, centre, axis);
+        group_up(k, c);
     };
     // With a sweep (see SpeculativeSweep): a triangle farther than sweep.near that the convex,
     // swept along its move, never meets is beside the path. It gives no manifold unless it rises
