@@ -16,6 +16,7 @@
 //                  in the same bits, between two measures of how far apart the cores are
 //                  (one atomic's round trip between two threads; docs/parallel.md)
 #include "bullet_peer.hpp"
+#include "scenes/piles.hpp"
 #include "scenes/random.hpp"
 #include "scenes/stacks.hpp"
 
@@ -94,19 +95,7 @@ WorldSettings<T> no_sleep() {
 /// N unit boxes in a loose grid 1.5 m apart, 2 … m above the ground, falling.
 template <class T>
 std::vector<BodyId> drop_boxes(World<T>& world, int n) {
-    scenes::add_ground(world, T(100));
-    scenes::Random rng(3);
-    const int side = static_cast<int>(std::ceil(std::sqrt(double(n) / 4)));
-    const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
-    std::vector<BodyId> ids;
-    for (int i = 0; i < n; ++i) {
-        const int layer = i / (side * side), k = i % (side * side);
-        BodyDef<T> def;
-        def.position = {T(1.5) * T(k % side - side / 2), T(2) + T(1.5) * T(layer), T(1.5) * T(k / side - side / 2)};
-        def.orientation = rng.rotation<T>();
-        ids.push_back(world.create_body(box, def));
-    }
-    return ids;
+    return scenes::dropped_boxes(world, n).bodies;
 }
 
 /// One pyramid run's numbers, xeno's or Bullet's.

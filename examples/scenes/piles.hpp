@@ -12,6 +12,7 @@
 
 #include <xeno/shape/convex_hull.hpp>
 
+#include <cmath>
 #include <memory>
 
 namespace xeno::scenes {
@@ -34,6 +35,29 @@ Scene rain(World<T>& world, int count = 120, std::uint64_t seed = 7) {
     s.eye = {9, 7, 12};
     s.target = {0, 1.5, 0};
     s.seconds = 5;  // the rain lands and the pile spreads
+    return s;
+}
+
+/// `count` unit boxes in a loose grid 1.5 m apart, layer above layer from 2 m up, turned at random,
+/// falling onto a 200 m ground: the benchmark's dropped piles (xeno_step_bench), and the pile the
+/// slow test of sleeping at scale drops.
+template <class T>
+Scene dropped_boxes(World<T>& world, int count) {
+    Scene s;
+    s.ground = add_ground(world, T(100));
+    Random rng(3);
+    const int side = static_cast<int>(std::ceil(std::sqrt(double(count) / 4)));
+    const auto box = std::make_shared<const Shape<T>>(Box<T>(T(0.5), T(0.5), T(0.5)));
+    for (int i = 0; i < count; ++i) {
+        const int layer = i / (side * side), k = i % (side * side);
+        BodyDef<T> def;
+        def.position = {T(1.5) * T(k % side - side / 2), T(2) + T(1.5) * T(layer), T(1.5) * T(k / side - side / 2)};
+        def.orientation = rng.rotation<T>();
+        s.bodies.push_back(world.create_body(box, def));
+    }
+    s.eye = {30, 20, 40};
+    s.target = {0, 1, 0};
+    s.seconds = 10;
     return s;
 }
 
