@@ -55,8 +55,9 @@ bool approx_equal(T a, T b, T relative = ScalarTraits<T>::relative_tolerance, T 
     return diff <= absolute || diff <= relative * scale;
 }
 
-/// x halved `times` times, exactly (a power of two), and 0 from 255 halvings on (the cached
-/// impulses of a body that got lighter, Body::impulse_halvings_).
+/// x halved `times` times: multiplied by a power of two, which is exact unless the result is
+/// subnormal (and then rounded the same way everywhere); 0 from 255 halvings on. For the cached
+/// impulses of a body that got lighter (Body::impulse_halvings_).
 template <class T>
 T halved(T x, int times) {
     return times >= 255 ? T(0) : std::ldexp(x, -times);

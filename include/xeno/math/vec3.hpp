@@ -130,7 +130,7 @@ template <class T>
 constexpr T length_squared(const Vec3<T>& a) {
     return dot(a, a);
 }
-/// Each component halved `times` times, exactly (scalar.hpp's halved).
+/// Each component halved `times` times (scalar.hpp's halved).
 template <class T>
 Vec3<T> halved(const Vec3<T>& v, int times) {
     return {halved(v.x, times), halved(v.y, times), halved(v.z, times)};
