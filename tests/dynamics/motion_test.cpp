@@ -469,6 +469,40 @@ TEST_CASE_TEMPLATE("a box dropped from h with restitution e bounces to e^2 h wit
     CHECK(std::abs(apex - e * e * h) < T(0.05) * e * e * h);
 }
 
+TEST_CASE_TEMPLATE(
+    "regression: with restitution_threshold 0 a bouncy body at rest stays at rest, and one dropped bounces to e^2 h", C,
+    XENO_TEST_CONFIGS) {
+    // Every approach bounced, a resting one too: its rebound speed, e v plus what gravity takes
+    // back within a substep (set_rebounds), was g h for v = 0, and a resting box or ball with
+    // e = 1 jumped between 0 and ±2 cm/s every step. An approach slower than that substep's pull
+    // no longer bounces.
+    using T = typename C::T;
+    WorldSettings<T> s = C::settings();
+    s.restitution_threshold = T(0);
+    for (const bool box : {false, true}) {
+        CAPTURE(box);
+        World<T> w(s);
+        const BodyId id = drop_above_ground(w, T(1), T(0), box);
+        T fastest = T(0);
+        simulate(w, T(4), [&](int step) {
+            if (step >= 60) fastest = std::max(fastest, length(w.body(id).linear_velocity()));
+        });
+        CHECK(fastest < T(1e-3));
+        World<T> dropped(s);
+        const BodyId ball = drop_above_ground(dropped, T(0.8), T(1), box);
+        T previous_vy = T(0), previous_y = T(0), top = T(0);
+        simulate(dropped, T(1.6), [&](int) {
+            const Body<T>& b = dropped.body(ball);
+            if (previous_vy > T(0) && b.linear_velocity().y <= T(0) && top == T(0))
+                top = previous_y + previous_vy * previous_vy / (T(2) * T(9.81));
+            previous_vy = b.linear_velocity().y;
+            previous_y = b.position().y - T(0.5);
+        });
+        CAPTURE(top);
+        CHECK(std::abs(top - T(0.64)) <= T(0.005) * T(0.64));
+    }
+}
+
 TEST_CASE_TEMPLATE("regression: a ball and a box bounce to e^2 of each apex, bounce after bounce, within 3 %", C,
                    XENO_TEST_CONFIGS) {
     // Restitution took the approach speed from the start of the step, before the gravity of the

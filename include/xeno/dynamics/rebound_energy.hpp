@@ -53,14 +53,14 @@ public:
     template <class JointRows>
     void before(const std::vector<ContactConstraint<T>>& rows, const std::vector<std::uint32_t>& bouncing,
                 const JointRows& joints, const std::vector<SolverBody<T>>& bodies,
-                const std::vector<BodyIntegration<T>>& integration, T threshold) {
+                const std::vector<BodyIntegration<T>>& integration, T threshold, T h) {
         members_.clear();
         saved_.clear();
         groups_.clear();
         // Most steps of a scene with restitution bounce nothing (a settled pile): then the pass
         // changes nothing and there is nothing to cap. (While 1,000 boxes rain onto a pile, with
         // landings every step, the cap takes 1.7 % of a step, measured with perf.)
-        if (std::none_of(bouncing.begin(), bouncing.end(), [&](std::uint32_t row) { return rebounds(rows[row], threshold); }))
+        if (std::none_of(bouncing.begin(), bouncing.end(), [&](std::uint32_t row) { return rebounds(rows[row], threshold, h); }))
             return;
         join_groups(rows, joints, integration);
         group_of_.assign(bodies.size(), none);
@@ -151,9 +151,10 @@ private:
     }
 
     /// Whether apply_restitution will drive any point of the row.
-    static bool rebounds(const ContactConstraint<T>& c, T threshold) {
+    static bool rebounds(const ContactConstraint<T>& c, T threshold, T h) {
+        const T gate = bounce_threshold(c, threshold, h);
         for (int i = 0; i < c.count; ++i)
-            if (point_rebounds(c.points[static_cast<std::size_t>(i)], threshold)) return true;
+            if (point_rebounds(c.points[static_cast<std::size_t>(i)], gate)) return true;
         return false;
     }
 

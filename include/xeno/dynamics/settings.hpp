@@ -58,8 +58,10 @@ struct WorldSettings {
     T linear_slop = T(0.005);            ///< m: overlap tolerated without correction (baumgarte) and contact tolerance
     T speculative_distance = T(0.02);    ///< m: gap below which contacts exist before touching (plus the approach of one step)
     T contact_match_distance = T(0.02);  ///< m: a new contact point within this of an old one inherits its impulses
-    T restitution_threshold = T(1);      ///< m/s: slower approaches do not bounce (resting boxes stay put)
-    T max_linear_speed = T(400);         ///< m/s: speed cap against tunnelling (lifted for fast bodies by CCD)
+    /// m/s: slower approaches do not bounce (resting boxes stay put); nor, whatever the setting, do
+    /// approaches slower than twice a substep's pull, 2 g h (detail::bounce_threshold)
+    T restitution_threshold = T(1);
+    T max_linear_speed = T(400);  ///< m/s: speed cap against tunnelling (lifted for fast bodies by CCD)
     T max_rotation_per_step = T(0.25) * ScalarTraits<T>::pi;  ///< rad per step
     bool warm_starting = true;                                ///< reuse last step's impulses as the first guess
     /// A pair whose contact anchors moved less than a tenth of linear_slop since its manifold was

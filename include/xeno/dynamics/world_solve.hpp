@@ -519,7 +519,8 @@ void World<T>::solve(T dt) {
         T(1) / h, true, settings_.solver, settings_.baumgarte, settings_.linear_slop, settings_.max_push_out_speed};
     for (int sub = 0; sub < substeps; ++sub) solve_substep(sub, h, pass);
     wide_rows_.unpack(constraints_, tasks_.get());
-    rebound_cap_.before(constraints_, bouncing_rows_, joint_rows_, solver_bodies_, integration_, settings_.restitution_threshold);
+    rebound_cap_.before(constraints_, bouncing_rows_, joint_rows_, solver_bodies_, integration_, settings_.restitution_threshold,
+                        h);
     detail::apply_restitution(constraints_, bouncing_rows_, solver_bodies_, solver_masses_, settings_.restitution_threshold, h);
     rebound_cap_.after(
         constraints_, solver_bodies_, solver_masses_, integration_,
