@@ -540,7 +540,7 @@ void set_box_mass(Body<T>& body, T mass) {
 }
 
 TEST_CASE_TEMPLATE("regression: a resting box made 10⁸ times lighter stays at rest", C, XENO_TEST_CONFIGS) {
-    // The contacts kept the impulses that held 100 t for the warm start of the 1 kg box's next
+    // The contacts kept the impulses that held 100 t for the warm start of the 1 g box's next
     // step: it jumped 4 cm at 0.7 m/s (a 10⁹ ratio: 6.6 m at 17 m/s), in float and in double.
     // A lighter body's cached impulses are now scaled down with its mass.
     using T = typename C::T;
