@@ -92,12 +92,6 @@ WorldSettings<T> no_sleep() {
     return s;
 }
 
-/// N unit boxes in a loose grid 1.5 m apart, 2 … m above the ground, falling.
-template <class T>
-std::vector<BodyId> drop_boxes(World<T>& world, int n) {
-    return scenes::dropped_boxes(world, n).bodies;
-}
-
 /// One pyramid run's numbers, xeno's or Bullet's.
 struct PyramidRun {
     std::size_t boxes;
@@ -155,7 +149,7 @@ void pyramid_rows(int base, int steps) {
 template <class T>
 void drop_row(int n, int steps) {
     World<T> world(no_sleep<T>());
-    drop_boxes(world, n);
+    scenes::dropped_boxes(world, n);
     const Timing t = time_steps(world, steps);
     std::printf("drop-%-7d %6d boxes %-6s %8.2f ms/step %7.0f contacts %7.0f points | over %.1f s of falling and settling\n", n,
                 n, precision<T>(), t.ms_per_step, t.contacts_per_step, t.points_per_step, steps / 60.0);
@@ -164,7 +158,7 @@ void drop_row(int n, int steps) {
 /// Issue "game features": a settled pile asleep against the same pile kept awake. Steps with
 /// sleeping on until every island sleeps (at most 30 s), times 60 steps, then wakes every body,
 /// turns sleeping off and times 60 more. `block`: 4,000 boxes resting in 20 × 20 columns of 10
-/// (settled from the start); otherwise the bodies of drop_boxes() after their fall.
+/// (settled from the start); otherwise the bodies of scenes::dropped_boxes() after their fall.
 template <class T>
 void sleep_row(int n, bool block) {
     WorldSettings<T> settings;
@@ -180,7 +174,7 @@ void sleep_row(int n, bool block) {
             ids.push_back(world.create_body(box, def));
         }
     } else {
-        ids = drop_boxes(world, n);
+        ids = scenes::dropped_boxes(world, n).bodies;
     }
     int settle = 0;
     for (; settle < 1800; ++settle) {
@@ -359,10 +353,10 @@ void workers_table(unsigned workers, bool quick) {
     for (int n : {1000, 4000}) {
         const std::string name = "drop-" + std::to_string(n);
         workers_row<float>(
-            name.c_str(), [&](World<float>& w) { drop_boxes(w, n); }, steps, workers);
+            name.c_str(), [&](World<float>& w) { scenes::dropped_boxes(w, n); }, steps, workers);
         if (n == 4000)
             workers_row<double>(
-                name.c_str(), [&](World<double>& w) { drop_boxes(w, n); }, steps, workers);
+                name.c_str(), [&](World<double>& w) { scenes::dropped_boxes(w, n); }, steps, workers);
     }
     std::printf("after the rows, a round trip between two threads takes %.0f ns\n", core_round_trip_ns());
 }

@@ -55,6 +55,7 @@ bool approx_equal(T a, T b, T relative = ScalarTraits<T>::relative_tolerance, T 
     return diff <= absolute || diff <= relative * scale;
 }
 
+namespace detail {
 /// x halved `times` times: multiplied by a power of two, which is exact unless the result is
 /// subnormal (and then rounded the same way everywhere); 0 from 255 halvings on. For the cached
 /// impulses of a body that got lighter (Body::impulse_halvings_).
@@ -62,6 +63,7 @@ template <class T>
 T halved(T x, int times) {
     return times >= 255 ? T(0) : std::ldexp(x, -times);
 }
+}  // namespace detail
 
 /// Degrees to radians.
 template <class T>

@@ -130,11 +130,13 @@ template <class T>
 constexpr T length_squared(const Vec3<T>& a) {
     return dot(a, a);
 }
-/// Each component halved `times` times (scalar.hpp's halved).
+namespace detail {
+/// Each component halved `times` times (scalar.hpp's detail::halved).
 template <class T>
 Vec3<T> halved(const Vec3<T>& v, int times) {
     return {halved(v.x, times), halved(v.y, times), halved(v.z, times)};
 }
+}  // namespace detail
 template <class T>
 T length(const Vec3<T>& a) {
     return std::sqrt(dot(a, a));
