@@ -255,14 +255,26 @@ bool point_rebounds(const ContactConstraintPoint<T>& p, T threshold) {
 /// (measured: a flat box bounced to 96 % of e v), and four left the points' shares uneven enough
 /// to turn it (a cube dropped flat with e = 1 left its second bounce turning at 0.04 rad/s and
 /// tipped over on its third; eight: 1e-8 rad/s).
-template <class T>
+///
+/// `joint_sweep` runs the joints' relax sweeps after each sweep of the normal rows, when some
+/// point rebounds: a body a joint holds then rebounds as the joint lets it. Left to the next
+/// step's joint rows, the part of the rebound the joint forbids was taken back inelastically: a
+/// hinged door spinning at 2 rad/s into a post with e = 1 came back at 1.61 rad/s.
+template <class T, class JointSweep>
 void apply_restitution(std::vector<ContactConstraint<T>>& constraints, const std::vector<std::uint32_t>& bouncing,
-                       std::vector<SolverBody<T>>& bodies, const std::vector<SolverMass<T>>& masses, T threshold, T h) {
+                       std::vector<SolverBody<T>>& bodies, const std::vector<SolverMass<T>>& masses, T threshold, T h,
+                       JointSweep&& joint_sweep) {
     constexpr int sweeps = 8;
-    for (const std::uint32_t row : bouncing)
-        set_rebounds(constraints[row], bodies[constraints[row].a], bodies[constraints[row].b], h);
+    bool rebounds = false;
+    for (const std::uint32_t row : bouncing) {
+        ContactConstraint<T>& c = constraints[row];
+        set_rebounds(c, bodies[c.a], bodies[c.b], h);
+        const T gate = bounce_threshold(c, threshold, h);
+        for (int i = 0; i < c.count; ++i) rebounds = rebounds || point_rebounds(c.points[static_cast<std::size_t>(i)], gate);
+    }
+    if (!rebounds) return;
     auto normal_sweeps = [&] {
-        for (int sweep = 0; sweep < sweeps; ++sweep)
+        for (int sweep = 0; sweep < sweeps; ++sweep) {
             for (const std::uint32_t row : bouncing) {
                 ContactConstraint<T>& c = constraints[row];
                 SolverBody<T>& a = bodies[c.a];
@@ -283,6 +295,8 @@ void apply_restitution(std::vector<ContactConstraint<T>>& constraints, const std
                     apply_impulse(b, masses[c.b], p.r_b, impulse);
                 }
             }
+            joint_sweep();
+        }
     };
     normal_sweeps();
     for (const std::uint32_t row : bouncing) {

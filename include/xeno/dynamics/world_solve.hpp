@@ -521,7 +521,8 @@ void World<T>::solve(T dt) {
     wide_rows_.unpack(constraints_, tasks_.get());
     rebound_cap_.before(constraints_, bouncing_rows_, joint_rows_, solver_bodies_, integration_, settings_.restitution_threshold,
                         h);
-    detail::apply_restitution(constraints_, bouncing_rows_, solver_bodies_, solver_masses_, settings_.restitution_threshold, h);
+    detail::apply_restitution(constraints_, bouncing_rows_, solver_bodies_, solver_masses_, settings_.restitution_threshold, h,
+                              [&] { joint_stage(JointStage::relax, h); });
     rebound_cap_.after(
         constraints_, solver_bodies_, solver_masses_, integration_,
         [&](std::uint32_t k) {
