@@ -988,6 +988,46 @@ TEST_CASE_TEMPLATE("a torque-free box keeps its angular momentum within 1 % over
     CHECK(worst < T(0.01));
 }
 
+// Regression: the gyroscopic step took ω into the body frame and back through q = Δq · q0, a
+// product of two rounded unit quaternions that is on average a little long in float, and the
+// round trip scaled ω by |q|⁴ every substep: a free box, cylinder or capsule tumbling in float
+// gained 0.14–0.22 % of its energy in 10 s (a straight line; 0.77 % at 32 substeps). Double kept
+// it to 1e-12. The midpoint rule keeps the energy and |L| of a free body; the test asks 1e-4.
+TEST_CASE_TEMPLATE("regression: a body tumbling freely keeps its energy and |L| in float and double", C, XENO_TEST_CONFIGS) {
+    using T = typename C::T;
+    WorldSettings<T> s = C::settings();
+    s.gravity = Vec3<T>::zero();
+    World<T> w(s);
+    BodyDef<T> def;
+    def.angular_velocity = {T(2), T(3), T(-1.5)};
+    const BodyId box = w.create_body(Box<T>(T(0.2), T(0.5), T(0.9)), def);
+    def.position = {T(5), T(0), T(0)};
+    def.angular_velocity = {T(1), T(2), T(0.5)};
+    const BodyId cylinder = w.create_body(Cylinder<T>(T(0.2), T(1)), def);
+    def.position = {T(-5), T(0), T(0)};
+    def.angular_velocity = {T(3), T(10), T(0)};
+    const BodyId capsule = w.create_body(Capsule<T>(T(0.1), T(0.8)), def);
+    // In the body frame, independent of the world-frame round trip the step makes.
+    const auto body_spin = [&](BodyId id) {
+        return inverse_rotate(normalized(w.body(id).orientation()), w.body(id).angular_velocity());
+    };
+    const auto energy = [&](BodyId id) { return dot(body_spin(id), w.body(id).local_inertia() * body_spin(id)) / T(2); };
+    const auto momentum = [&](BodyId id) { return length(w.body(id).local_inertia() * body_spin(id)); };
+    const BodyId bodies[] = {box, cylinder, capsule};
+    T e0[3], l0[3], worst_e = T(0), worst_l = T(0);
+    for (int i = 0; i < 3; ++i) e0[i] = energy(bodies[i]), l0[i] = momentum(bodies[i]);
+    simulate(w, T(10), [&](int) {
+        for (int i = 0; i < 3; ++i) {
+            worst_e = std::max(worst_e, std::abs(energy(bodies[i]) / e0[i] - T(1)));
+            worst_l = std::max(worst_l, std::abs(momentum(bodies[i]) / l0[i] - T(1)));
+        }
+    });
+    CAPTURE(worst_e);
+    CAPTURE(worst_l);
+    CHECK(worst_e < T(1e-4));
+    CHECK(worst_l < T(1e-4));
+}
+
 TEST_CASE_TEMPLATE("spun near its intermediate axis a free box flips (Dzhanibekov)", C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
     WorldSettings<T> s = C::settings();

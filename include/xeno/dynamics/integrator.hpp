@@ -109,7 +109,12 @@ void integrate_velocity(SolverBody<T>& body, const BodyIntegration<T>& in, T h) 
             if (!j_inv) break;
             w1 -= *j_inv * f;
         }
-        body.w = rotate(q, w1);
+        // Only the change goes back to the world frame. q is a product of two rounded unit
+        // quaternions, on average a little long in float (|q|² − 1 ≈ +9e-8), and the round trip
+        // rotate(q, inverse_rotate(q, ω)) scales ω by |q|⁴: a box tumbling freely gained 0.14 %
+        // of its energy in 10 s at 8 substeps (0.77 % at 32), a straight line. On the change
+        // alone the scale is that much of a small correction.
+        body.w += rotate(q, w1 - w0);
     }
     body.v *= T(1) / (T(1) + h * in.linear_damping);
     body.w *= T(1) / (T(1) + h * in.angular_damping);
