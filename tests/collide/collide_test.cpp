@@ -247,7 +247,11 @@ TEST_CASE_TEMPLATE("regression: collide(A, B) and collide(B, A) agree bit for bi
             // With the centres together, axes of equal overlap tie and either way may take another.
             const T tolerance = T(64) * ScalarTraits<T>::epsilon;
             CHECK(near(ab.depth, ba.depth, tolerance));
-            if (tb.position != ta.position) CHECK(near(ab.normal, -ba.normal, tolerance));
+            if (tb.position != ta.position) {
+                CHECK(near(ab.normal, -ba.normal, tolerance));
+                CHECK(near(ab.point_a, ba.point_b, tolerance));
+                CHECK(near(ab.point_b, ba.point_a, tolerance));
+            }
             continue;
         }
         CHECK(same_bits(ab.normal, -ba.normal));
@@ -256,6 +260,31 @@ TEST_CASE_TEMPLATE("regression: collide(A, B) and collide(B, A) agree bit for bi
         CHECK(std::memcmp(&ab.depth, &ba.depth, sizeof(T)) == 0);
     }
     CHECK(hits > 36 * 20);
+}
+
+TEST_CASE_TEMPLATE("regression: a box lying flat on another gets the same contact point either way round", T, float, double) {
+    // collide() took the incident box's support corner as the point whenever it lay over the
+    // reference face, though a whole face of that box was as deep: a 0.5 m cube resting 0.1 deep
+    // on a 1 m one got a corner of its face one way round and the face's middle the other, 0.71 m
+    // apart. Now both give the middle of the overlap, to rounding, whatever the two boxes' turn
+    // about the normal, the overhang, and the pose of the whole pair.
+    scenes::Random rng(35);
+    const Shape<T> large = Box<T>(T(1), T(0.6), T(0.8)), small = Box<T>(T(0.5), T(0.3), T(0.4));
+    for (int k = 0; k < 200; ++k) {
+        CAPTURE(k);
+        const Quat<T> whole = k < 20 ? Quat<T>::identity() : rng.rotation<T>();
+        const Quat<T> turn = k < 10 ? Quat<T>::identity() : Quat<T>::from_axis_angle(Vec3<T>::unit_y(), rng.uniform(T(-3), T(3)));
+        const Vec3<T> offset{rng.uniform(T(-1.2), T(1.2)), T(0.6 + 0.3 - 0.05), rng.uniform(T(-1), T(1))};
+        const Transform<T> ta{Vec3<T>{T(2), T(-1), T(3)}, whole};
+        const Transform<T> tb{ta.position + rotate(whole, offset), whole * turn};
+        const Penetration<T> ab = collide(large, ta, small, tb), ba = collide(small, tb, large, ta);
+        REQUIRE(ab.hit == ba.hit);
+        if (!ab.hit) continue;
+        const T tolerance = std::is_same_v<T, float> ? T(1e-5) : T(1e-12);
+        CHECK(near(ab.depth, T(0.05), T(20) * tolerance));
+        CHECK(near(ab.point_a, ba.point_b, tolerance));
+        CHECK(near(ab.point_b, ba.point_a, tolerance));
+    }
 }
 
 // Two finite poses at ±max of T are farther apart than T holds: the offset overflowed to inf,

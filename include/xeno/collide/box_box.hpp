@@ -45,19 +45,24 @@ template <bool OnSurfaces, class T>
 void face_contact_points(const MinkowskiDifference<Box<T>, Box<T>>& md, const Vec3<T>& n, T h, int face, Vec3<T>& point_a,
                          Vec3<T>& point_b) {
     if constexpr (OnSurfaces) {
-        // collide(): the incident box's deepest corner when it lies over the reference face (then
-        // it and its projection are on both surfaces: the common case, and cheap); else the middle
-        // of where the two support features overlap across n, lifted onto both surfaces
-        // (contact_points.hpp). The corner alone can be metres outside a small box when the other
-        // is large.
+        // collide(): the incident box's deepest corner when it is its only deepest point and lies
+        // over the reference face (then it and its projection are on both surfaces: the common
+        // case, and cheap); else the middle of where the two support features overlap across n,
+        // lifted onto both surfaces (contact_points.hpp). The corner alone can be metres outside
+        // a small box when the other is large. An incident edge or face (within the tolerance
+        // place_contact_points uses) has no one deepest corner: which corner the support picked
+        // depended on which box was A, and collide(B, A) put the point 0.7 m from collide(A, B)'s
+        // for a box resting flat on a larger one.
+        const T tau = std::max(ScalarTraits<T>::geometric_tolerance, T(1e-7)) * md.scale();
         auto over_face = [](const Vec3<T>& p, const Vec3<T>& half, int axis) {
             for (int k = 0; k < 3; ++k)
                 if (k != axis && std::abs(p[k]) > half[k]) return false;
             return true;
         };
         if (face < 3) {
-            const Vec3<T> corner_b = md.to_a(md.shape_b().support(md.direction_to_b(-n)));
-            if (over_face(corner_b, md.shape_a().half_extents(), face)) {
+            const Vec3<T> d = md.direction_to_b(-n);
+            const Vec3<T> corner_b = md.to_a(md.shape_b().support(d));
+            if (support_feature(md.shape_b(), d, tau).count == 1 && over_face(corner_b, md.shape_a().half_extents(), face)) {
                 point_b = corner_b;
                 point_a = corner_b + n * h;
                 return;
@@ -65,7 +70,8 @@ void face_contact_points(const MinkowskiDifference<Box<T>, Box<T>>& md, const Ve
         } else {
             const Vec3<T> corner_a = md.shape_a().support(n);
             const Vec3<T> t = md.to_a(Vec3<T>::zero());
-            if (over_face(transposed_transform(md.rotation_b(), corner_a - t), md.shape_b().half_extents(), face - 3)) {
+            if (support_feature(md.shape_a(), n, tau).count == 1 &&
+                over_face(transposed_transform(md.rotation_b(), corner_a - t), md.shape_b().half_extents(), face - 3)) {
                 point_a = corner_a;
                 point_b = corner_a - n * h;
                 return;
