@@ -28,6 +28,7 @@
 #include "face_clip.hpp"
 #include "mpr.hpp"
 #include "round_pairs.hpp"
+#include "sphere_solid.hpp"
 #include "shape_ref.hpp"
 
 #include <algorithm>
@@ -88,6 +89,10 @@ bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scala
         // Spheres and capsules, with each other or a box: exact in closed form (round_pairs.hpp).
         return round_contact(md, n, h, point_a, point_b);
     }
+    if constexpr (is_sphere_solid_pair<A, B>) {
+        // A sphere with a cylinder or a cone: exact in closed form (sphere_solid.hpp).
+        return sphere_solid_contact(md, n, h, point_a, point_b);
+    }
     if constexpr (std::is_same_v<A, Box<T>> && std::is_same_v<B, Box<T>>) {
         // Two boxes: the exact separating axis in closed form is cheaper than MPR and exact.
         return box_box_axis<OnSurfaces>(md, n, h, point_a, point_b) && h > -md.margin();
@@ -116,10 +121,12 @@ bool refined_contact(const MinkowskiDifference<A, B>& md, Vec3<typename A::scala
     return true;
 }
 
-/// Pairs that go through MPR (not closed-form: round pairs, two boxes).
+/// Pairs that go through MPR (not closed-form: round pairs, a sphere with a cylinder or a cone,
+/// two boxes).
 template <class A, class B>
 constexpr bool answered_by_mpr =
-    !is_round_pair<A, B> && !(std::is_same_v<A, Box<typename A::scalar_type>> && std::is_same_v<B, Box<typename A::scalar_type>>);
+    !is_round_pair<A, B> && !is_sphere_solid_pair<A, B> &&
+    !(std::is_same_v<A, Box<typename A::scalar_type>> && std::is_same_v<B, Box<typename A::scalar_type>>);
 
 /// Whether collide() and intersect() should run a pair as (B, A) and flip the answer. MPR and the
 /// least-depth expansion stop within tolerances along paths that depend on the order, so a pair
@@ -189,6 +196,8 @@ ContactManifold<typename A::scalar_type> manifold_of(const MinkowskiDifference<A
     using T = typename A::scalar_type;
     if constexpr (is_round_pair<A, B>) {
         return round_manifold(md);  // their own manifolds
+    } else if constexpr (is_sphere_solid_pair<A, B>) {
+        return sphere_solid_manifold(md);
     } else {
         Vec3<T> n, pa, pb;
         T h;
@@ -218,6 +227,8 @@ bool intersect_in_order(const Shape<T>& a, const Transform<T>& pose_a, const Sha
                 return p ? p->hit : true;  // centres within touching distance: a hit (round_intersect)
             } else if constexpr (is_round_pair<SA, SB>) {
                 return round_intersect(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b));
+            } else if constexpr (is_sphere_solid_pair<SA, SB>) {
+                return sphere_solid_intersect(MinkowskiDifference<SA, SB>(sa, pose_a, sb, pose_b));
             } else if constexpr (!answered_by_mpr<SA, SB>) {  // two boxes
                 const MinkowskiDifference<SA, SB> md(sa, pose_a, sb, pose_b);
                 Vec3<T> n, pa, pb;
