@@ -517,3 +517,65 @@ TEST_CASE_TEMPLATE("regression: an inertia stiff about one axis is positive defi
     m.inertia = Mat3<T>::diagonal({T(1), T(-1), T(1)});
     CHECK_THROWS_AS(b.set_mass_properties(m), InvalidArgument);
 }
+
+TEST_CASE_TEMPLATE(
+    "regression: a capsule of subnormal half height gives finite contacts, and a cylinder dropped on it steps finite", T, float,
+    double) {
+    // Its core's length squared underflows to 0. The contact-point rule took it and a cylinder's
+    // side for two parallel segments and divided by that 0: collide() gave NaN points, and in a
+    // world the manifold kept NaN anchors until merging a fifth point wrote past its four slots,
+    // over its count (float: a crash in the 12th step of the scene below; double: NaN points).
+    const T subnormal = std::numeric_limits<T>::denorm_min() * T(1024);
+    const Shape<T> capsule = Capsule<T>(T(1), subnormal), cylinder = Cylinder<T>(T(0.5), T(1));
+    for (const T x : {T(0.9), T(1), T(1.2)}) {
+        CAPTURE(x);
+        const Penetration<T> p = collide(capsule, Transform<T>{}, cylinder, Transform<T>{{x, T(0), T(0)}, {}});
+        REQUIRE(p.hit);
+        CHECK(is_finite(p.point_a));
+        CHECK(is_finite(p.point_b));
+        CHECK(is_finite(p.normal));
+    }
+    for (int k = 26; k <= 34; ++k) {
+        CAPTURE(k);
+        World<T> w;
+        BodyDef<T> fixed;
+        fixed.type = BodyType::static_body;
+        w.create_body(capsule, fixed);
+        fixed.position = {T(0), T(-3), T(0)};
+        w.create_body(Box<T>(T(10), T(1), T(10)), fixed);
+        BodyDef<T> d;
+        d.position = {T(0.05) * T(k) - T(1), T(2.5), T(0.03) * T(k)};
+        d.orientation = normalized(Quat<T>{T(1), T(0.02) * T(k), T(0), T(0.01) * T(k)});
+        d.linear_velocity = {T(0), -T(k), T(0)};
+        w.create_body(cylinder, d);
+        for (int i = 0; i < 120; ++i) w.step(T(1) / T(60));
+        CHECK(non_finite_bodies(w) == 0);
+        for (const Contact<T>& c : w.contacts()) {
+            REQUIRE(c.manifold.count >= 0);
+            REQUIRE(c.manifold.count <= 4);
+            for (int i = 0; i < c.manifold.count; ++i) CHECK(is_finite(c.manifold.points[static_cast<std::size_t>(i)].local_a));
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("regression: merging a point into a manifold of four non-finite anchors keeps it within its four slots", T,
+                   float, double) {
+    // Old points were dropped when `separation > margin || slide > match`, which NaN passes, so
+    // they stayed; with no finite area among the five candidates none was chosen to go, and all
+    // five were written back, the fifth past the array over the manifold's count.
+    Manifold<T> m;
+    m.normal = Vec3<T>::unit_y();
+    m.count = Manifold<T>::capacity;
+    const T inf = std::numeric_limits<T>::infinity();
+    for (ContactPoint<T>& p : m.points) p.local_a = p.local_b = {inf, T(0), inf}, p.depth = T(0.01);
+    m.friction_impulse = {T(1), T(2), T(3)};
+    ManifoldPoint<T> fresh;
+    fresh.point_a = {T(0), T(0), T(0)};
+    fresh.point_b = {T(0), T(-0.01), T(0)};
+    fresh.depth = T(0.01);
+    m.merge_single(fresh, Vec3<T>::unit_y(), Transform<T>{}, Transform<T>{}, T(0.05), T(0.05));
+    REQUIRE(m.count >= 1);
+    REQUIRE(m.count <= Manifold<T>::capacity);
+    for (int i = 0; i < m.count; ++i) CHECK(is_finite(m.points[static_cast<std::size_t>(i)].local_a));
+    CHECK(m.friction_impulse == Vec3<T>{T(1), T(2), T(3)});
+}

@@ -156,7 +156,9 @@ bool common_point(const SupportFace<T>& fa, const SupportFace<T>& fb, const Vec3
     auto flat = [&](const Vec3<T>& v) { return v - n * dot(v, n); };
     const Vec3<T> da = flat(a1 - a0), db = flat(b1 - b0);
     const T la = length_squared(da), lb = length_squared(db);
-    if (fa.count == 2 && fb.count == 2 && length_squared(cross(da, db)) <= T(1e-6) * la * lb) {
+    // A segment whose length squared underflows (a capsule of subnormal half height) is a point
+    // here: as "parallel" it divided by la = 0 and gave NaN points (and a NaN manifold in the world).
+    if (fa.count == 2 && fb.count == 2 && la > T(0) && lb > T(0) && length_squared(cross(da, db)) <= T(1e-6) * la * lb) {
         // Parallel segments: the middle of the part of B's within A's extent along the shared line.
         const T t0 = dot(flat(b0 - a0), da) / la, t1 = dot(flat(b1 - a0), da) / la;
         const T lo = std::max(std::min(t0, t1), T(0)), hi = std::min(std::max(t0, t1), T(1));

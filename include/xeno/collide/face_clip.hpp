@@ -246,8 +246,11 @@ ContactManifold<typename A::scalar_type> build_manifold(const MinkowskiDifferenc
         if (ref.count >= 3) {
             on_ref = p - ref_normal * dot(p - ref[0], ref_normal);
         } else {
+            // A segment too short for its length squared (a capsule of subnormal half height) is
+            // its point: dividing by that 0 gave the manifold NaN anchors.
             const Vec3<T> axis = ref[1] - ref[0];
-            on_ref = ref[0] + axis * clamp(dot(p - ref[0], axis) / length_squared(axis), T(0), T(1));
+            const T axis_sq = length_squared(axis);
+            on_ref = axis_sq > T(0) ? ref[0] + axis * clamp(dot(p - ref[0], axis) / axis_sq, T(0), T(1)) : ref[0];
         }
         const T separation = dot(p - on_ref, ref_normal);
         if (separation > margin) continue;

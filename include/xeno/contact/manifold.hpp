@@ -126,7 +126,8 @@ void Manifold<T>::merge_single(const ManifoldPoint<T>& fresh, const Vec3<T>& nor
         const Vec3<T> gap = pose_b.apply(p.local_b) - pose_a.apply(p.local_a);
         const T separation = dot(gap, normal);
         const Vec3<T> slide = gap - normal * separation;
-        if (separation > margin || length_squared(slide) > match_distance * match_distance) continue;
+        // Asked as "within", so that a point made of NaN (never from finite input) is dropped too.
+        if (!(separation <= margin && length_squared(slide) <= match_distance * match_distance)) continue;
         p.depth = -separation;
         points[static_cast<std::size_t>(kept++)] = p;
     }
@@ -151,7 +152,9 @@ void Manifold<T>::merge_single(const ManifoldPoint<T>& fresh, const Vec3<T>& nor
     int deepest = 0;
     for (int i = 1; i <= capacity; ++i)
         if (all[static_cast<std::size_t>(i)].depth > all[static_cast<std::size_t>(deepest)].depth) deepest = i;
-    int drop = -1;
+    // Without a finite area (NaN anchors) the newest point goes, or the first when it is the
+    // deepest: left at -1, drop kept all five and wrote the fifth past the array, over `count`.
+    int drop = deepest == capacity ? 0 : capacity;
     T best_area = -T(1);
     for (int skip = 0; skip <= capacity; ++skip) {
         if (skip == deepest) continue;
