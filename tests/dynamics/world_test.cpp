@@ -379,6 +379,48 @@ TEST_CASE_TEMPLATE("regression: a moved-from mesh, heightfield, compound or hull
     w.step(T(1) / T(60));
 }
 
+// The queries took them unchecked: a moved-from hull crashed collide, intersect, shape_cast and
+// the world's shape queries (its support read no vertices), a compound took one as a child, and
+// a moved-from mesh or heightfield crashed its ray casts and the mesh queries.
+TEST_CASE_TEMPLATE("regression: a moved-from hull is refused by every query, and a moved-from mesh has no triangles", T, float,
+                   double) {
+    World<T> w;
+    BodyDef<T> def;
+    w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def);
+    ConvexPolyhedron<T> kept_hull = make_box_polyhedron<T>({T(1), T(1), T(1)});
+    Shape<T> hull = kept_hull;
+    const Shape<T> kept = std::move(hull);
+    const Shape<T> ball = Sphere<T>(T(1));
+    const Transform<T> here{};
+    Ray<T> ray;
+    ray.origin = {T(0.2), T(5), T(0.2)};
+    ray.direction = {T(0), T(-1), T(0)};
+    // NOLINTBEGIN(bugprone-use-after-move)
+    CHECK_THROWS_AS(intersect(hull, here, ball, here), InvalidArgument);
+    CHECK_THROWS_AS(collide(ball, here, hull, here), InvalidArgument);
+    CHECK_THROWS_AS(raycast(hull, here, ray), InvalidArgument);
+    CHECK_THROWS_AS(shape_cast(hull, here, Vec3<T>{T(1), T(0), T(0)}, ball, here), InvalidArgument);
+    CHECK_THROWS_AS(mass_properties(hull, T(1)), InvalidArgument);
+    CHECK_THROWS_AS(w.overlap_shape(hull, here), InvalidArgument);
+    CHECK_THROWS_AS(w.shape_cast(hull, here, Vec3<T>{T(1), T(0), T(0)}), InvalidArgument);
+    CHECK_THROWS_AS(Compound<T>({CompoundChild<T>{hull, {}}}), InvalidArgument);
+    CHECK(intersect(kept, here, ball, here));
+    TriangleMesh<T> mesh({{T(-5), T(0), T(-5)}, {T(5), T(0), T(-5)}, {T(0), T(0), T(5)}}, {{{0, 2, 1}}});
+    const TriangleMesh<T> kept_mesh = std::move(mesh);
+    HeightField<T> field(3, 3, std::vector<T>(9, T(0)), T(1));
+    const HeightField<T> kept_field = std::move(field);
+    CHECK_FALSE(mesh.raycast(ray));
+    CHECK_FALSE(field.raycast(ray));
+    for (const MeshShape<T>& empty : {MeshShape<T>(mesh), MeshShape<T>(field)}) {
+        CHECK_FALSE(raycast(empty, here, ray));
+        CHECK_FALSE(intersect_mesh(empty, here, ball, here));
+        CHECK_FALSE(shape_cast(ball, Transform<T>{{T(0), T(3), T(0)}, {}}, Vec3<T>{T(0), T(-5), T(0)}, empty, here));
+    }
+    // NOLINTEND(bugprone-use-after-move)
+    CHECK(kept_mesh.raycast(ray));
+    CHECK(kept_field.raycast(ray));
+}
+
 // A finite, non-zero hinge axis of length 1e-20 (or 1e20 in float) had |axis|² underflow (or
 // overflow) and was refused as "zero"; and set_shape took an out-of-range MassUpdate as recompute.
 TEST_CASE_TEMPLATE("regression: a tiny or huge joint axis is an axis, and set_shape refuses an unknown MassUpdate", T, float,

@@ -277,6 +277,8 @@ bool offset_is_finite(const Transform<T>& pose_a, const Transform<T>& pose_b) {
 /// Runs in collide()'s order, so the two agree, whichever order they are given the shapes in.
 template <class T>
 bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
+    detail::require_moved_in(a, "intersect");
+    detail::require_moved_in(b, "intersect");
     detail::require_finite_pose(pose_a, "intersect", "pose_a");
     detail::require_finite_pose(pose_b, "intersect", "pose_b");
     if (!detail::offset_is_finite(pose_a, pose_b)) return false;
@@ -291,6 +293,8 @@ bool intersect(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b,
 /// (detail::query_order_swapped says why).
 template <class T>
 Penetration<T> collide(const Shape<T>& a, const Transform<T>& pose_a, const Shape<T>& b, const Transform<T>& pose_b) {
+    detail::require_moved_in(a, "collide");
+    detail::require_moved_in(b, "collide");
     detail::require_finite_pose(pose_a, "collide", "pose_a");
     detail::require_finite_pose(pose_b, "collide", "pose_b");
     if (!detail::offset_is_finite(pose_a, pose_b)) return {};

@@ -469,6 +469,7 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
 template <class T>
 bool intersect_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Shape<T>& convex,
                     const Transform<T>& pose_convex) {
+    detail::require_moved_in(convex, "intersect_mesh");
     const Transform<T> pose = inverse(pose_mesh) * pose_convex;
     const Vec3<T> centre = pose.apply(interior_point(convex));
     const Mat3<T> r = to_matrix(pose.orientation);
@@ -489,6 +490,7 @@ bool intersect_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const 
 template <class T>
 std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>& pose_a, const Vec3<T>& translation,
                                           const MeshShape<T>& m, const Transform<T>& pose_mesh) {
+    detail::require_moved_in(a, "shape_cast");
     detail::require_finite_pose(pose_a, "shape_cast", "pose_a");
     detail::require_finite_pose(pose_mesh, "shape_cast", "pose_mesh");
     detail::require_finite_xyz(translation, "shape_cast", "translation");

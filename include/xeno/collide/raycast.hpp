@@ -349,6 +349,7 @@ std::optional<RayHit<T>> raycast_checked(const Shape<T>& shape, const Transform<
 /// to the shape along itself (detail::skip_to).
 template <class T>
 std::optional<RayHit<T>> raycast(const Shape<T>& shape, const Transform<T>& pose, const Ray<T>& ray) {
+    detail::require_moved_in(shape, "raycast");
     detail::require_finite_pose(pose, "raycast", "pose");
     return detail::raycast_checked(shape, pose, detail::checked_ray(ray, "raycast"));
 }

@@ -342,6 +342,8 @@ std::optional<ShapeCastHit<T>> cast_where_spheres_meet(const Vec3<T>& centre_b, 
 template <class T>
 std::optional<ShapeCastHit<T>> shape_cast(const Shape<T>& a, const Transform<T>& pose_a, const Vec3<T>& translation,
                                           const Shape<T>& b, const Transform<T>& pose_b) {
+    detail::require_moved_in(a, "shape_cast");
+    detail::require_moved_in(b, "shape_cast");
     detail::require_finite_pose(pose_a, "shape_cast", "pose_a");
     detail::require_finite_pose(pose_b, "shape_cast", "pose_b");
     detail::require_finite_xyz(translation, "shape_cast", "translation");

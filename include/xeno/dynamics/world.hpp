@@ -867,12 +867,7 @@ namespace detail {
 // A shape's own constructor checks it, but a moved-from mesh, compound or hull is a valid object
 // with nothing in it: a moved-from mesh crashed create_body (its bounds read an empty tree), and
 // an empty compound or hull was accepted and left a world whose own snapshot did not restore.
-template <class T>
-void require_moved_in(const Shape<T>& shape, const char* where) {
-    if (const auto* hull = std::get_if<ConvexPolyhedron<T>>(&shape); hull && hull->vertices().size() < 4)
-        report_invalid(where, "a convex hull needs at least 4 vertices (a moved-from hull?); vertices",
-                       static_cast<double>(hull->vertices().size()));
-}
+// (The convex shape's check, detail::require_moved_in(Shape), is in shape.hpp.)
 template <class T>
 void require_moved_in(const Compound<T>& compound, const char* where) {
     if (compound.children().empty()) report_invalid(where, "a compound needs a part (a moved-from compound?); parts", 0.0);

@@ -128,6 +128,7 @@ std::vector<BodyId> World<T>::overlap_sphere(const Vec3<T>& center, T radius, co
 
 template <class T>
 std::vector<BodyId> World<T>::overlap_shape(const Shape<T>& shape, const Transform<T>& pose, const QueryFilter<T>& filter) const {
+    detail::require_moved_in(shape, "World::overlap_shape");
     detail::require_finite_pose(pose, "World::overlap_shape", "pose");
     const Aabb<T> box = world_bounds(shape, pose);
     return overlapping(box, filter, [&](std::uint32_t slot) {
@@ -145,6 +146,7 @@ std::vector<BodyId> World<T>::overlap_shape(const Shape<T>& shape, const Transfo
 template <class T>
 std::optional<WorldShapeCastHit<T>> World<T>::shape_cast(const Shape<T>& shape, const Transform<T>& pose,
                                                          const Vec3<T>& translation, const QueryFilter<T>& filter) const {
+    detail::require_moved_in(shape, "World::shape_cast");
     detail::require_finite_pose(pose, "World::shape_cast", "pose");
     detail::require_finite_xyz(translation, "World::shape_cast", "translation");
     Aabb<T> swept = world_bounds(shape, pose);

@@ -68,6 +68,7 @@ Compound<T>::Compound(std::vector<CompoundChild<T>> children) : children_(std::m
     for (std::size_t i = 0; i < children_.size(); ++i) {
         CompoundChild<T>& c = children_[i];
         const std::string child = "child " + std::to_string(i);
+        detail::require_moved_in(c.shape, where);
         // Positions within the size range (1e6 m in float), so the centre of mass, the bounds and
         // the inertia about it stay finite (a float child at 1e38 gave an infinite shift).
         detail::require_within_xyz(c.local.position, ScalarTraits<T>::max_size, where, (child + " local.position").c_str(), " m");

@@ -222,7 +222,7 @@ bool HeightField<T>::cell_range(T a, T b, T origin, std::uint32_t samples, std::
 template <class T>
 template <class F, class Keep>
 void HeightField<T>::for_each_triangle(const Aabb<T>& box, F&& f, Keep keep) const {
-    if (!overlaps(box, bounds_)) return;
+    if (empty() || !overlaps(box, bounds_)) return;  // moved from: no triangles
     std::uint32_t i0, i1, j0, j1;
     if (!cell_range(box.min.x, box.max.x, origin_x_, columns_, i0, i1) ||
         !cell_range(box.min.z, box.max.z, origin_z_, rows_, j0, j1))
@@ -252,6 +252,7 @@ void HeightField<T>::for_each_triangle(const Aabb<T>& box, F&& f, Keep keep) con
 template <class T>
 std::optional<std::pair<RayHit<T>, std::uint32_t>> HeightField<T>::raycast(const Ray<T>& ray) const {
     Ray<T> r = detail::checked_ray(ray, "HeightField::raycast");
+    if (empty()) return std::nullopt;  // moved from: no triangles
     const T extent = length(bounds_.max - bounds_.min) + spacing_;
     const T place = std::max({std::abs(r.origin.x), std::abs(r.origin.y), std::abs(r.origin.z)});
     const T pad = spacing_ * T(1e-3) + T(64) * ScalarTraits<T>::epsilon * (place + extent);

@@ -55,8 +55,22 @@ T volume(const Shape<T>& s) {
     return std::visit([](const auto& shape) { return shape.volume(); }, s);
 }
 /// Mass properties of any shape at density (kg/m³); density must be finite and > 0.
+namespace detail {
+/// A moved-from hull is a valid object without vertices, whose support reads nothing: every
+/// entry that takes a shape (create_body, set_shape, collide, intersect, raycast, shape_cast,
+/// the world's shape queries, a compound's children) rejects it (InvalidArgument) instead of
+/// crashing.
+template <class T>
+void require_moved_in(const Shape<T>& shape, const char* where) {
+    if (const auto* hull = std::get_if<ConvexPolyhedron<T>>(&shape); hull && hull->vertices().size() < 4)
+        report_invalid(where, "a convex hull needs at least 4 vertices (a moved-from hull?); vertices",
+                       static_cast<double>(hull->vertices().size()));
+}
+}  // namespace detail
+
 template <class T>
 MassProperties<T> mass_properties(const Shape<T>& s, T density) {
+    detail::require_moved_in(s, "mass_properties");
     return std::visit([&](const auto& shape) { return mass_properties(shape, density); }, s);
 }
 

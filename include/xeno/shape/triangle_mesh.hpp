@@ -89,7 +89,7 @@ public:
     const std::vector<Vec3<T>>& vertices() const { return vertices_; }
     /// Triangles dropped at build (degenerate or duplicate).
     std::size_t dropped_triangles() const { return dropped_; }
-    Aabb<T> local_bounds() const { return nodes_.front().box; }
+    Aabb<T> local_bounds() const { return nodes_.empty() ? Aabb<T>{} : nodes_.front().box; }  // empty: moved from
     /// Triangle k of the hierarchy's order (0 … size() - 1; source_index(k) is its number in the
     /// constructor's list, the number queries and contacts report).
     MeshTriangle<T> triangle(std::uint32_t k) const {
@@ -288,6 +288,7 @@ std::uint32_t TriangleMesh<T>::build(std::uint32_t begin, std::uint32_t end, std
 template <class T>
 template <class F, class Keep>
 void TriangleMesh<T>::for_each_triangle(const Aabb<T>& box, F&& f, Keep keep) const {
+    if (nodes_.empty()) return;  // moved from: no triangles
     std::uint32_t stack[64];
     int top = 0;
     stack[top++] = 0;
@@ -411,6 +412,7 @@ struct RaySlabs {
 template <class T>
 std::optional<std::pair<RayHit<T>, std::uint32_t>> TriangleMesh<T>::raycast(const Ray<T>& ray) const {
     Ray<T> r = detail::checked_ray(ray, "TriangleMesh::raycast");
+    if (nodes_.empty()) return std::nullopt;  // moved from: no triangles
     const detail::RayFrame<T> frame(r);
     const detail::RaySlabs<T> slabs(r, nodes_[0].box);
     std::optional<std::pair<RayHit<T>, std::uint32_t>> best;
