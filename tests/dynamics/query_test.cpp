@@ -287,3 +287,44 @@ TEST_CASE_TEMPLATE("a pick ray that ignores static bodies passes the ground and 
     CHECK_THROWS_AS(world.query_aabb(Aabb<T>{{T(-1), T(2), T(-1)}, {T(1), T(0), T(1)}}), InvalidArgument);
     CHECK(world.query_aabb(Aabb<T>{{T(3), T(1), T(0)}, {T(3), T(1), T(0)}}) == std::vector<BodyId>{box});
 }
+
+// A query filter's accept that changed the world crashed the query: one destroying the body it
+// was shown had raycast_all read the freed body (query_filter.hpp said "must not", nothing held
+// it). Now the changing call is rejected from inside the callback, and the world keeps its bodies.
+TEST_CASE_TEMPLATE("regression: a query filter's accept cannot change the world, and may still query it", T, float, double) {
+    World<T> w;
+    BodyDef<T> def;
+    std::vector<BodyId> ids;
+    for (int i = 0; i < 4; ++i) {
+        def.position = {T(0), T(2 * i), T(0)};
+        ids.push_back(w.create_body(Box<T>(T(0.5), T(0.5), T(0.5)), def));
+    }
+    Ray<T> ray;
+    ray.origin = {T(0), T(20), T(0)};
+    ray.direction = {T(0), T(-1), T(0)};
+    QueryFilter<T> destroying;
+    destroying.accept = [&](BodyId id, const Body<T>&) {
+        w.destroy_body(id);
+        return true;
+    };
+    CHECK_THROWS_AS(w.raycast_all(ray, destroying), InvalidArgument);
+    CHECK_THROWS_AS(w.overlap_sphere(Vec3<T>{T(0), T(2), T(0)}, T(1), destroying), InvalidArgument);
+    QueryFilter<T> moving;
+    moving.accept = [&](BodyId id, const Body<T>&) {
+        w.set_transform(id, Vec3<T>{T(9), T(9), T(9)}, Quat<T>::identity());
+        return true;
+    };
+    CHECK_THROWS_AS(w.raycast(ray, moving), InvalidArgument);
+    CHECK(w.body_count() == 4);
+    for (const BodyId id : ids) CHECK(w.body(id).position().x == T(0));
+    // Reading and querying from the callback is fine, and after the query the world may change.
+    QueryFilter<T> reading;
+    int seen = 0;
+    reading.accept = [&](BodyId id, const Body<T>&) {
+        seen += static_cast<int>(w.overlap_sphere(w.body(id).position(), T(0.1)).size());
+        return true;
+    };
+    CHECK(w.raycast_all(ray, reading).size() == 4);
+    CHECK(seen == 4);
+    CHECK_NOTHROW(w.destroy_body(ids[0]));
+}

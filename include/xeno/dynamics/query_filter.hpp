@@ -16,7 +16,8 @@ namespace xeno {
 
 /// What a world query skips. A body counts when its layer shares a bit with `mask`, none of the
 /// switches excludes it and `accept` (when set) returns true. The callback runs inside the query:
-/// it may read the world but must not change it.
+/// it may read the world (and query it) but not change it: a changing call made from it is
+/// rejected (InvalidArgument, out of the query).
 template <class T>
 struct QueryFilter {
     std::uint32_t mask = ~std::uint32_t(0);              ///< layers seen: body.layer() & mask != 0

@@ -456,12 +456,31 @@ private:
         FlagScope(const FlagScope&) = delete;
         FlagScope& operator=(const FlagScope&) = delete;
     };
-    /// The door of every mutating call: rejected while the contact filter runs.
+    /// The door of every mutating call: rejected while the contact filter runs, or a query
+    /// filter's `accept` on this thread.
     void require_outside_filter(const char* where) const {
         if (callbacks_.in_filter)
             detail::report_invalid(std::string("xeno: ") + where +
                                    ": the world may not be changed from inside the contact filter (change it after step())");
+        if (accepting_world() == this)
+            detail::report_invalid(
+                std::string("xeno: ") + where +
+                ": the world may not be changed from inside a query filter's accept (change it after the query)");
     }
+    /// The world whose query filter's `accept` runs on this thread, if any. Per thread, as queries
+    /// may run on several at once (docs/parallel.md). A query walks the world's trees and bodies
+    /// around the callback: an accept that destroyed the body it was shown crashed raycast_all.
+    static const World*& accepting_world() {
+        static thread_local const World* world = nullptr;
+        return world;
+    }
+    struct AcceptScope {
+        const World* outer;
+        explicit AcceptScope(const World* world) : outer(accepting_world()) { accepting_world() = world; }
+        ~AcceptScope() { accepting_world() = outer; }
+        AcceptScope(const AcceptScope&) = delete;
+        AcceptScope& operator=(const AcceptScope&) = delete;
+    };
     /// step() and update(): rejected inside the filter and inside the contact listener.
     void require_outside_callbacks(const char* where) const {
         require_outside_filter(where);
@@ -702,7 +721,11 @@ private:
     /// events land in the same places however the blocks are handed out).
     static constexpr std::uint32_t event_block = 256;
     // Query helpers (world_query.hpp).
-    bool seen_by(const QueryFilter<T>& filter, std::uint32_t slot) const { return filter.passes(id_of(slot), bodies_[slot]); }
+    bool seen_by(const QueryFilter<T>& filter, std::uint32_t slot) const {
+        if (!filter.accept) return filter.passes(id_of(slot), bodies_[slot]);
+        const AcceptScope scope(this);
+        return filter.passes(id_of(slot), bodies_[slot]);
+    }
     std::optional<RayHit<T>> nearest_hit(std::uint32_t slot, const Ray<T>& ray) const;
     template <class Exact>
     std::vector<BodyId> overlapping(const Aabb<T>& box, const QueryFilter<T>& filter, Exact&& exact) const;
