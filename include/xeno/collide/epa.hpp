@@ -20,8 +20,9 @@
 
 #include "minkowski.hpp"
 
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 
 namespace xeno::detail {
 
@@ -74,6 +75,13 @@ public:
 
     /// The live face nearest the origin.
     const Face& nearest() const { return faces_[nearest_]; }
+    /// Whether the origin is inside (or on, within round-off) every face: MPR's tetrahedron
+    /// always holds it, another start may not.
+    bool holds_origin() const {
+        for (int f = 0; f < face_count_; ++f)
+            if (faces_[f].distance < -visible_) return false;
+        return true;
+    }
 
     /// Adds w (a point of D beyond the nearest face): removes every face that sees it and closes
     /// the hole with a fan of faces to w. False when a cap is reached or round-off breaks the
@@ -264,6 +272,41 @@ private:
     T visible_{};         ///< m, how far beyond a face's plane a point must be to see it
 };
 
+/// A start for the polytope when MPR's portal is one point of D (a corner of D on the centre
+/// line). Two shapes that turn about one axis, their centres on it (a capsule standing on a cone's
+/// axis), put v0, the origin and the portal on one line: the portal shrank to a point, the
+/// expansion was skipped, and MPR's depth along the axis stood, 41 % deeper than the least. When
+/// D is shallower a little off the line, its support points in three directions around the line
+/// (120° apart) and one along it, either way, make the start: the first such tetrahedron that
+/// holds the origin. False (MPR's answer stands) otherwise. `queries` counts the support calls.
+template <class A, class B>
+bool start_around_centre_line(const MinkowskiDifference<A, B>& md, const Vec3<typename A::scalar_type> (&flat)[4],
+                              typename A::scalar_type h, ExpandingPolytope<typename A::scalar_type>& polytope, int& queries) {
+    using T = typename A::scalar_type;
+    const std::optional<Vec3<T>> line = try_normalized(flat[1] + flat[2] + flat[3] - flat[0] * T(3));  // v0 → portal
+    if (!line) return false;
+    const Vec3<T> u = any_perpendicular(*line), v = cross(*line, u);
+    const T half_root3 = std::sqrt(T(3)) / T(2);
+    const Vec3<T> around[3] = {u, u * T(-0.5) + v * half_root3, u * T(-0.5) - v * half_root3};
+    // Only where D is shallower a little off the line (45°): a sphere's D, whose least depth is
+    // along the line, often ends MPR on one point too, and there the expansion would only cost.
+    bool shallower = false;
+    for (const Vec3<T>& a : around) {
+        const Vec3<T> tilted = normalized(*line + a);
+        shallower = shallower || dot(md.support_fresh(tilted).v, tilted) < T(0.99) * h;
+    }
+    queries += 3;
+    if (!shallower) return false;
+    const Vec3<T> ring[3] = {md.support_fresh(around[0]).v, md.support_fresh(around[1]).v, md.support_fresh(around[2]).v};
+    queries += 3;
+    for (const T side : {T(1), T(-1)}) {
+        const Vec3<T> tetrahedron[4] = {md.support_fresh(*line * side).v, ring[0], ring[1], ring[2]};
+        ++queries;
+        if (polytope.start(tetrahedron, md.scale()) && polytope.holds_origin()) return true;
+    }
+    return false;
+}
+
 /// Lowers the depth h (D's support distance along the unit normal n, margin included) towards the
 /// least support distance of D over all directions, starting from MPR's tetrahedron `simplex`
 /// (which contains the origin). n and h change only to a direction with a smaller support
@@ -276,8 +319,13 @@ int expand_to_least_depth(const MinkowskiDifference<A, B>& md, const Vec3<typena
     // Below this the support distances are round-off (MPR's own convergence tolerance, mpr.hpp).
     const T absolute = std::max((std::is_same_v<T, float> ? T(1e-5) : T(1e-7)) * md.tolerance_scale(), md.round_off());
     ExpandingPolytope<T> polytope;
-    if (!polytope.start(simplex, md.scale())) return 0;
     int queries = 0;
+    if (!polytope.start(simplex, md.scale())) {
+        // A flat start with a portal of three distinct points is MPR converged on a smooth part of
+        // D, whose answer stands; a portal that is one point is a corner of D on the centre line.
+        const bool corner = simplex[1] == simplex[2] && simplex[2] == simplex[3];
+        if (!corner || !start_around_centre_line(md, simplex, h, polytope, queries)) return queries;
+    }
     for (int k = 0; k < ExpandingPolytope<T>::kMaxVertices; ++k) {
         const auto& face = polytope.nearest();
         const T lower = face.distance;
