@@ -54,7 +54,6 @@ template <class T>
 T volume(const Shape<T>& s) {
     return std::visit([](const auto& shape) { return shape.volume(); }, s);
 }
-/// Mass properties of any shape at density (kg/m³); density must be finite and > 0.
 namespace detail {
 /// A moved-from hull is a valid object without vertices, whose support reads nothing: every
 /// entry that takes a shape (create_body, set_shape, collide, intersect, raycast, shape_cast,
@@ -68,6 +67,7 @@ void require_moved_in(const Shape<T>& shape, const char* where) {
 }
 }  // namespace detail
 
+/// Mass properties of any shape at density (kg/m³); density must be finite and > 0.
 template <class T>
 MassProperties<T> mass_properties(const Shape<T>& s, T density) {
     detail::require_moved_in(s, "mass_properties");
