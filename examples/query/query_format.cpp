@@ -264,9 +264,12 @@ ShapeSpec<T> parse_shape(const std::string& column) {
             throw LineError("hull point count '" + words[1] + "' is not an integer");
         if (n < 4) throw LineError("hull needs at least 4 points (got n = " + words[1] + ")");
         const std::size_t given = words.size() - 2;
-        if (static_cast<unsigned long>(n) > given || given != 3 * static_cast<std::size_t>(n))
-            throw LineError("hull of " + words[1] + " points takes " + std::to_string(3 * static_cast<unsigned long>(n)) +
-                            " coordinates, got " + std::to_string(given));
+        if (static_cast<unsigned long>(n) > given || given != 3 * static_cast<std::size_t>(n)) {
+            // 3 n only when n fits the line: for n of 6·10¹⁸ it wrapped and the message named 2.
+            const std::string needed =
+                static_cast<unsigned long>(n) <= given ? std::to_string(3 * static_cast<unsigned long>(n)) : "3 × " + words[1];
+            throw LineError("hull of " + words[1] + " points takes " + needed + " coordinates, got " + std::to_string(given));
+        }
         for (std::size_t i = 2; i < words.size(); i += 3)
             spec.points.push_back({parse_number<T>(words[i]), parse_number<T>(words[i + 1]), parse_number<T>(words[i + 2])});
     } else {

@@ -307,6 +307,8 @@ TEST_CASE("bad lines are reported by number and the run goes on") {
          "shape A: hull needs at least 4 points"},
         {tsv({"b", "hull 4 0 0 0 1 0 0 0 1 0 0 0", "0 0 0", identity, "sphere 1", "0 0 0", identity}),
          "shape A: hull of 4 points takes 12 coordinates, got 11"},
+        {tsv({"b", "hull 6148914691236517206 0 0 0 1 0 0 0 1 0 0 0 1", "0 0 0", identity, "sphere 1", "0 0 0", identity}),
+         "shape A: hull of 6148914691236517206 points takes 3 × 6148914691236517206 coordinates, got 12"},  // 3 n wrapped to 2
         {tsv({"b", "hull 4.5 0 0 0", "0 0 0", identity, "sphere 1", "0 0 0", identity}),
          "shape A: hull point count '4.5' is not an integer"},
         {tsv({"b", "hull 4 0 0 0 1 0 0 0 1 0 1 1 0", "0 0 0", identity, "sphere 1", "0 0 0", identity}),
