@@ -396,8 +396,7 @@ TEST_CASE_TEMPLATE("regression: a cylinder and a capsule roll on at 30 m/s, and 
         CHECK(std::abs(b.linear_velocity().x + b.angular_velocity().z * r) <= T(1e-3) * v);
     }
     // In free fall: end over end at 100 rad/s is capped at π/4 a step; about its axis it keeps 100.
-    WorldSettings<T> settings = C::settings();
-    settings.gravity = Vec3<T>::zero();
+    WorldSettings<T> settings = C::weightless();
     World<T> w(settings);
     BodyDef<T> def;
     def.angular_velocity = {T(100), T(0), T(0)};
@@ -597,8 +596,7 @@ TEST_CASE_TEMPLATE("regression: a ball striking a row of touching balls with e =
     // double (the solver does not pass the impulse down a touching row as a real cradle does).
     using T = typename C::T;
     for (const T gap : {T(0), T(0.001), T(0.01)}) {
-        WorldSettings<T> s = C::settings();
-        s.gravity = Vec3<T>::zero();
+        WorldSettings<T> s = C::weightless();
         World<T> w(s);
         BodyDef<T> def;
         def.material = {T(0), T(1)};
@@ -693,8 +691,7 @@ TEST_CASE_TEMPLATE("regression: a ball striking a floor obliquely leaves as Newt
     for (const double mu : {0.05, 0.1, 0.3})
         for (const double e : {0.0, 0.5, 1.0}) {
             const bool rolls = vt - mu * (1 + e) * vn < 5.0 / 7.0 * vt;
-            WorldSettings<T> s = C::settings();
-            s.gravity = Vec3<T>::zero();
+            WorldSettings<T> s = C::weightless();
             World<T> w(s);
             BodyDef<T> floor;
             floor.type = BodyType::static_body;
@@ -904,8 +901,7 @@ TEST_CASE_TEMPLATE("with restitution 1 a box never bounces higher than it starte
 
 TEST_CASE_TEMPLATE("momentum is conserved when two bodies collide without gravity", C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
-    WorldSettings<T> s = C::settings();
-    s.gravity = Vec3<T>::zero();
+    WorldSettings<T> s = C::weightless();
     World<T> w(s);
     BodyDef<T> a;
     a.position = {T(-2), T(0), T(0)};
@@ -938,8 +934,7 @@ TEST_CASE_TEMPLATE("a ball struck off-centre leaves along the line of centres at
     for (const double speed : {3.0, 10.0, 30.0})
         for (const double offset : {0.2, 0.5, 0.95})
             for (const double start : {-2.0, -2.05, -2.1}) {
-                WorldSettings<T> s = C::settings();
-                s.gravity = Vec3<T>::zero();
+                WorldSettings<T> s = C::weightless();
                 World<T> w(s);
                 BodyDef<T> def;
                 def.material = {T(0), T(1)};
@@ -970,8 +965,7 @@ TEST_CASE_TEMPLATE("a ball struck off-centre leaves along the line of centres at
 
 TEST_CASE_TEMPLATE("a torque-free box keeps its angular momentum within 1 % over 10 s", C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
-    WorldSettings<T> s = C::settings();
-    s.gravity = Vec3<T>::zero();
+    WorldSettings<T> s = C::weightless();
     World<T> w(s);
     BodyDef<T> def;
     def.angular_velocity = {T(2), T(3), T(-1.5)};  // not about a principal axis
@@ -995,8 +989,7 @@ TEST_CASE_TEMPLATE("a torque-free box keeps its angular momentum within 1 % over
 // it to 1e-12. The midpoint rule keeps the energy and |L| of a free body; the test asks 1e-4.
 TEST_CASE_TEMPLATE("regression: a body tumbling freely keeps its energy and |L| in float and double", C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
-    WorldSettings<T> s = C::settings();
-    s.gravity = Vec3<T>::zero();
+    WorldSettings<T> s = C::weightless();
     World<T> w(s);
     BodyDef<T> def;
     def.angular_velocity = {T(2), T(3), T(-1.5)};
@@ -1030,8 +1023,7 @@ TEST_CASE_TEMPLATE("regression: a body tumbling freely keeps its energy and |L| 
 
 TEST_CASE_TEMPLATE("spun near its intermediate axis a free box flips (Dzhanibekov)", C, XENO_TEST_CONFIGS) {
     using T = typename C::T;
-    WorldSettings<T> s = C::settings();
-    s.gravity = Vec3<T>::zero();
+    WorldSettings<T> s = C::weightless();
     World<T> w(s);
     BodyDef<T> def;
     def.angular_velocity = {T(0.01), T(5), T(0.01)};  // y is the intermediate axis of (0.2, 0.5, 0.9)

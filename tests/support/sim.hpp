@@ -34,6 +34,12 @@ struct Config {
         s.allow_sleeping = Sleeping;
         return s;
     }
+    /// The same without gravity (collisions and free motion).
+    static WorldSettings<T> weightless() {
+        WorldSettings<T> s = settings();
+        s.gravity = Vec3<T>::zero();
+        return s;
+    }
 };
 
 }  // namespace xeno::test
