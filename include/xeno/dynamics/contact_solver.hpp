@@ -247,6 +247,15 @@ bool point_rebounds(const ContactConstraintPoint<T>& p, T threshold) {
     return !(p.relative_velocity > -threshold) && p.max_normal_impulse != T(0);
 }
 
+/// Whether the restitution pass drives any point of row c (point_rebounds).
+template <class T>
+bool row_rebounds(const ContactConstraint<T>& c, T threshold, T h) {
+    const T gate = bounce_threshold(c, threshold, h);
+    for (int i = 0; i < c.count; ++i)
+        if (point_rebounds(c.points[static_cast<std::size_t>(i)], gate)) return true;
+    return false;
+}
+
 /// The restitution pass after the substeps (see the file comment) over the rows in `bouncing`:
 /// those with a restitution, in row order (World::prepare lists them), so that a scene without
 /// bounce does not read every row. Eight sweeps of the normal rows, the friction of the rebound
@@ -269,8 +278,7 @@ void apply_restitution(std::vector<ContactConstraint<T>>& constraints, const std
     for (const std::uint32_t row : bouncing) {
         ContactConstraint<T>& c = constraints[row];
         set_rebounds(c, bodies[c.a], bodies[c.b], h);
-        const T gate = bounce_threshold(c, threshold, h);
-        for (int i = 0; i < c.count; ++i) rebounds = rebounds || point_rebounds(c.points[static_cast<std::size_t>(i)], gate);
+        rebounds = rebounds || row_rebounds(c, threshold, h);
     }
     if (!rebounds) return;
     auto normal_sweeps = [&] {
