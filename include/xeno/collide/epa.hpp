@@ -291,11 +291,11 @@ bool start_around_centre_line(const MinkowskiDifference<A, B>& md, const Vec3<ty
     // Only where D is shallower a little off the line (45°): a sphere's D, whose least depth is
     // along the line, often ends MPR on one point too, and there the expansion would only cost.
     bool shallower = false;
-    for (const Vec3<T>& a : around) {
-        const Vec3<T> tilted = normalized(*line + a);
-        shallower = shallower || dot(md.support_fresh(tilted).v, tilted) < T(0.99) * h;
+    for (int k = 0; k < 3 && !shallower; ++k) {
+        const Vec3<T> tilted = normalized(*line + around[k]);
+        shallower = dot(md.support_fresh(tilted).v, tilted) < T(0.99) * h;
+        ++queries;
     }
-    queries += 3;
     if (!shallower) return false;
     const Vec3<T> ring[3] = {md.support_fresh(around[0]).v, md.support_fresh(around[1]).v, md.support_fresh(around[2]).v};
     queries += 3;

@@ -98,8 +98,7 @@ SurfacePoint<T> nearest_surface_point(const Cone<T>& cone, const Vec3<T>& p, T t
     return {p - normal * beyond, normal, beyond};
 }
 
-/// The sphere's centre and the solid's nearest surface point, in the solid's frame; `solid_is_a`
-/// says which side of md the solid is.
+/// The solid's surface point nearest the sphere's centre, in the solid's frame (md's A or B).
 template <class A, class B>
 SurfacePoint<typename A::scalar_type> sphere_solid_nearest(const MinkowskiDifference<A, B>& md) {
     using T = typename A::scalar_type;
