@@ -211,18 +211,26 @@ TEST_CASE_TEMPLATE("regression: a hinged door or a pendulum striking a post with
         test::simulate(w, T(0.5));
         CHECK(w.body(door).angular_velocity().y == doctest::Approx(T(-2)).epsilon(0.01));
     }
-    {
+    // The pendulum: a wall whose face touches the bob at rest, its normal turned `turn` degrees
+    // from the swing (about z). Head-on the strike gives the energy back; turned, the approach is
+    // taken from free motion, which the joint turns within the step, and some is lost
+    // (docs/solver-design.md, "Restitution"; `-s` prints how much), never gained.
+    for (const int turn : {0, 10, 20, 30}) {
+        CAPTURE(turn);
         World<T> w(C::settings());
         const BodyId pivot = anchor_body(w, Vec3<T>{T(0), T(2), T(0)});
+        const T angle = T(turn) * ScalarTraits<T>::pi / T(180), radius = T(0.1);
+        const Vec3<T> towards_bob{-std::cos(angle), -std::sin(angle), T(0)}, rest{T(0), T(1), T(0)};
         BodyDef<T> wall;
         wall.type = BodyType::static_body;
-        wall.position = {T(0.6), T(1), T(0)};  // its face at x = 0.1, touching the bob at rest
+        wall.position = rest - towards_bob * (radius + T(0.5));  // head-on: at (0.6, 1, 0), its face at x = 0.1
+        wall.orientation = Quat<T>::from_axis_angle(Vec3<T>::unit_z(), angle);
         wall.material = elastic;
         w.create_body(Box<T>(T(0.5), T(1), T(1)), wall);
         BodyDef<T> d;
         d.position = {-std::sin(T(0.5)), T(2) - std::cos(T(0.5)), T(0)};  // released 0.5 rad out
         d.material = elastic;
-        const BodyId bob = w.create_body(Sphere<T>(T(0.1)), d);
+        const BodyId bob = w.create_body(Sphere<T>(radius), d);
         w.create_joint(JointDef<T>::ball(pivot, bob, Vec3<T>{T(0), T(2), T(0)}));
         const auto energy = [&] {  // above the bob's lowest point; its spin about the pivot counted
             const Body<T>& b = w.body(bob);
@@ -232,11 +240,16 @@ TEST_CASE_TEMPLATE("regression: a hinged door or a pendulum striking a post with
         };
         const T e0 = energy();
         int strikes = 0;
-        test::simulate(w, T(4),
-                       [&](int) { strikes += w.body(bob).linear_velocity().x < T(0) && w.body(bob).position().x > T(-0.01); });
-        CAPTURE(energy() / e0);
+        T most = e0;
+        test::simulate(w, T(4), [&](int) {
+            strikes += w.body(bob).linear_velocity().x < T(0) && w.body(bob).position().x > T(-0.01);
+            most = std::max(most, energy());
+        });
+        MESSAGE("pendulum, wall turned ", turn, " deg: energy kept after 4 s ", energy() / e0);
         CHECK(strikes > 0);
-        CHECK(energy() == doctest::Approx(e0).epsilon(0.01));
+        CHECK(most <= e0 * T(1.002));
+        if (turn == 0) CHECK(energy() == doctest::Approx(e0).epsilon(0.01));
+        else CHECK(energy() > T(0.5) * e0);
     }
 }
 
