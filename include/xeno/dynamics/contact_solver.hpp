@@ -106,19 +106,6 @@ bool levers_turn_far(const ContactConstraint<T>& c, const Vec3<T>& w, T step, bo
     return step * length(w) * std::sqrt(reach) > kTurnSpeed;
 }
 
-/// The leading part of chord_slip (below), the chord's pull towards the axis 2 sin²(θ/2) u × (u × r) / h,
-/// without its shortening along the tangent ((sin θ − θ) u × r / h, the next order in θ). A
-/// joint's rows take this one (World::turn_joint_inertias): a gyroscope turns up to 0.4 rad a
-/// substep, where with the shortening its precession was 2.6 % slow (1.0 % without).
-template <class T>
-Vec3<T> chord_pull(const Vec3<T>& w, const Vec3<T>& r, T h) {
-    const T speed = length(w);
-    if (!(speed > T(0))) return {};
-    const Vec3<T> u = w / speed;
-    const T half_sine = std::sin(speed * h / T(2));
-    return cross(u, cross(u, r)) * (T(2) * half_sine * half_sine / h);
-}
-
 /// A body turning at w carries a point at lever r along the chord of its turn, at
 /// (R(w h) − 1) r / h on average over a substep h, not at w × r, the tangent at the substep's
 /// start that the friction row's lever gives. The difference, about h |w|² r / 2 towards the
@@ -133,17 +120,29 @@ Vec3<T> chord_pull(const Vec3<T>& w, const Vec3<T>& r, T h) {
 /// the step's start, off by the angle of one step. A dynamic body's w is the step's start too:
 /// its change over the step changes the slip by a term of the next order.
 ///
-/// By Rodrigues' formula, with θ = |w| h and u = w / |w|, (R − 1) r = sin θ u × r +
-/// (1 − cos θ) u × (u × r), so the slip is ((sin θ − θ) u × r + 2 sin²(θ/2) u × (u × r)) / h:
+/// By Rodrigues' formula, with u = w / |w| and φ the angle the integrator turns the body by in
+/// h (integrated_angle: 2 atan(θ/2) for θ = |w| h up to 1/8 rad), (R − 1) r = sin φ u × r +
+/// (1 − cos φ) u × (u × r), so the slip is ((sin φ − θ) u × r + 2 sin²(φ/2) u × (u × r)) / h:
 /// each term small and computed as such. Subtracting r from R r, as this did until the slip was
 /// given to dynamic bodies, lost the slip's last digits in float (1e-7 r / h, 5 % of it at 1 m
 /// and 1 rad/s).
+///
+/// A joint's point rows take it too (World::turn_joint_inertias): they hold the anchors' motion
+/// along the chord, which the position update makes. They took only the pull towards the axis
+/// for a while, taken at θ: the anchor then ran ahead of its partner by the rest, about θ³/4 of
+/// the lever a substep, and the rows' position correction pulled it back by spinning the body
+/// up, as its inertia about its own centre is the smaller: a ball whirled on a joint at 20 rad/s
+/// gained 22 % of its energy in a minute, and at 30 rad/s ran away to the speed cap. (The first
+/// reason for the pull, a gyroscope on a ball joint whose axle sank, is in docs/solver.md.)
 template <class T>
 Vec3<T> chord_slip(const Vec3<T>& w, const Vec3<T>& r, T h) {
     const T speed = length(w);
     if (!(speed > T(0))) return {};
     const T theta = speed * h;
-    return cross(w / speed, r) * ((std::sin(theta) - theta) / h) + chord_pull(w, r, h);
+    const T turn = integrated_angle(w * h);
+    const Vec3<T> u = w / speed;
+    const T half_sine = std::sin(turn / T(2));
+    return cross(u, r) * ((std::sin(turn) - theta) / h) + cross(u, cross(u, r)) * (T(2) * half_sine * half_sine / h);
 }
 
 /// m/s: the chord slip (chord_slip) below which a side's levers stay fixed and its row takes no

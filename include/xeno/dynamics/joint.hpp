@@ -164,10 +164,10 @@ struct JointConstraint {
     SolverMass<T> mass_a{}, mass_b{};  ///< the two bodies' inverse masses and inertias, frozen for the step
     Vec3<T> r_a0{}, r_b0{};            ///< anchors at the start of the step (rotated by Δq each substep)
     Vec3<T> delta_center{};            ///< x_B − x_A at the start of the step
-    /// m/s: the chord pull (chord_pull) of B's anchor less A's for the coming substep, set with
+    /// m/s: the chord slip (chord_slip) of B's anchor less A's for the coming substep, set with
     /// the turned inertias before each pass: the point rows hold the anchors' motion along the
     /// chord of the bodies' turn, which the position update makes, not along its tangent ω × r.
-    Vec3<T> pull{};
+    Vec3<T> slip{};
     Vec3<T> axis_a0{}, axis_b0{}, ref_a0{}, ref_b0{};  ///< hinge frames at the start of the step
     Quat<T> qa0{}, qb0{};                              ///< orientations at the start of the step
     T motor_start_speed{};                             ///< a motor's axis speed at the start of the step (World::motor_turning)
@@ -457,7 +457,7 @@ void solve_point_block(Joint<T>& j, const JointConstraint<T>& c, SolverBody<T>& 
     if (!k_inv) return;
     const Vec3<T> separation = (b.dp - a.dp) + c.delta_center + rb - ra;
     const Vec3<T> bias = s.bias_rate > T(0) ? detail::capped_length(separation * s.bias_rate, c.max_bias_speed) : Vec3<T>::zero();
-    const Vec3<T> cdot = b.velocity_at(rb) - a.velocity_at(ra) + c.pull + bias;
+    const Vec3<T> cdot = b.velocity_at(rb) - a.velocity_at(ra) + c.slip + bias;
     const Vec3<T> impulse = (*k_inv * cdot) * (-s.mass_scale) - j.linear_impulse * s.impulse_scale;
     j.linear_impulse += impulse;
     apply_impulse(a, c.mass_a, ra, -impulse);

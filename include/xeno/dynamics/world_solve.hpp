@@ -487,24 +487,25 @@ detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, con
 // R I₀⁻¹ Rᵀ); only an anisotropic one's changes. Frozen at the step's start, a disc spinning at
 // 200 rad/s on a ball joint, precessing at 0.74 rad/s, met its joint's torque with the inertia of
 // an axis up to 0.7° behind, which fed its spin 0.35 % a second at any substep count.
-// Each row also takes its anchors' chord pull for the coming substep h (detail::chord_pull): the
+// Each row also takes its anchors' chord slip for the coming substep h (detail::chord_slip): the
 // position update carries an anchor along the chord of its body's turn, not along the tangent
-// ω × r the row holds, and where ω is not square to the lever the chord's pull towards the axis
-// has a part off the lever, which the relax pass turned into a steady loss: that disc's axle, at
+// ω × r the row holds. Where ω is not square to the lever the chord's pull towards the axis has
+// a part off the lever, which the relax pass turned into a steady loss: that disc's axle, at
 // 0.3 m, sank 16° in 4 s (about 3° a second at any spin), now 3.5° (docs/solver.md, "A gyroscope
-// on a ball joint").
+// on a ball joint"). The chord's shortening along the tangent counts too: without it a body
+// whirled round a joint spun itself up (chord_slip).
 template <class T>
 void World<T>::turn_joint_inertias(T h) {
     const auto turned = [&](std::uint32_t k) {
         const Mat3<T> r = to_matrix(solver_bodies_[k].dq);
         return r * solver_masses_[k].inv_inertia * transpose(r);
     };
-    const auto pull = [&](std::uint32_t k, const Vec3<T>& r0) {
+    const auto slip = [&](std::uint32_t k, const Vec3<T>& r0) {
         const detail::SolverBody<T>& s = solver_bodies_[k];
-        return k == 0 ? Vec3<T>{} : detail::chord_pull(s.w, rotate(s.dq, r0), h);
+        return k == 0 ? Vec3<T>{} : detail::chord_slip(s.w, rotate(s.dq, r0), h);
     };
     for (detail::JointConstraint<T>& c : joint_rows_) {
-        c.pull = pull(c.b, c.r_b0) - pull(c.a, c.r_a0);
+        c.slip = slip(c.b, c.r_b0) - slip(c.a, c.r_a0);
         if (c.a != 0 && integration_[c.a].gyroscopic) c.mass_a.inv_inertia = turned(c.a);
         if (c.b != 0 && integration_[c.b].gyroscopic) c.mass_b.inv_inertia = turned(c.b);
     }

@@ -231,6 +231,19 @@ Quat<T> integrate(const Quat<T>& q, const Vec3<T>& omega, T dt) {
     return normalized(r * q);
 }
 
+/// The angle (rad) integrate() turns an orientation by for the turn ω dt: 2 atan(θ/2) up to
+/// θ = 1/8 rad (the first-order step), θ itself beyond. What a point carried by a turning body
+/// really travels in a substep follows from it (detail::chord_slip): a chord taken at θ instead
+/// left a joint's anchor θ³/12 of its lever ahead each substep, which the joint's position
+/// correction took back by spinning the body up (a ball whirled on a joint at 30 rad/s doubled
+/// its energy in 30 s).
+template <class T>
+T integrated_angle(const Vec3<T>& turn) {
+    const T angle_sq = length_squared(turn);
+    const T angle = std::sqrt(angle_sq);
+    return angle_sq > T(1) / T(64) ? angle : T(2) * std::atan(angle / T(2));
+}
+
 template <class T>
 Quat<T> Quat<T>::from_axis_angle(const Vec3<T>& axis, T angle) {
     const Vec3<T> n = normalized_or(axis, Vec3<T>::unit_x());
