@@ -245,6 +245,35 @@ ContactManifold<typename S::scalar_type> triangle_manifold(const MeshTriangle<ty
     return m;
 }
 
+/// A capsule over a triangle's face (mesh frame): the ends of its core that lie over the face
+/// become points, each at its own depth (the farther one speculative, within `margin`), as
+/// round_manifold gives a capsule on a box's face. MPR gives a round shape one point per
+/// triangle, and a triangle beside the one under the tip gives none (its edge normal is a ghost,
+/// and a round shape keeps no point beyond its edges): a capsule that landed on one end had
+/// nothing under the other, which swung through the surface, and the one-sided triangles let the
+/// rest follow. 11 of 100 thin capsules dropped from 5 m went through a flat mesh or heightfield,
+/// none through a box. A triangle without a manifold of its own gives the ends it lies under
+/// when the capsule's centre is in front of it; one with a manifold along another normal (an edge
+/// or a fold) gives none.
+template <class T>
+void add_capsule_ends(const MeshTriangle<T>& t, const Capsule<T>& capsule, const Transform<T>& pose, const Vec3<T>& centre,
+                      T margin, ContactManifold<T>& m) {
+    constexpr T same_normal = T(0.999);  // cos 2.6°, as collide_mesh groups normals
+    if (m.count > 0 ? !(dot(m.normal, t.normal) >= same_normal) : !(dot(centre - t.v[0], t.normal) > T(0))) return;
+    if (m.count == 0) m.normal = t.normal;
+    const T tolerance = T(1e-4) * capsule.bounding_radius();
+    for (const T side : {T(-1), T(1)}) {
+        const Vec3<T> end = pose.apply(Vec3<T>{T(0), side * capsule.half_height(), T(0)});
+        const T height = dot(end - t.v[0], t.normal);
+        const ManifoldPoint<T> p{end - t.normal * height, end - t.normal * capsule.radius(), capsule.radius() - height};
+        bool over = p.depth > -margin;
+        for (int e = 0; e < 3 && over; ++e) over = dot(p.point_a - t.v[e], outward_of_edge(t, e)) <= tolerance;
+        for (int i = 0; i < m.count && over; ++i)  // MPR's point is the nearer end's, or near it
+            over = length_squared(m.points[static_cast<std::size_t>(i)].point_b - p.point_b) > square(tolerance);
+        if (over && m.count < ContactManifold<T>::capacity) m.points[static_cast<std::size_t>(m.count++)] = p;
+    }
+}
+
 /// Candidate points of manifolds sharing a normal, reduced to four whenever the buffer fills.
 template <class T>
 struct NormalGroup {
@@ -374,6 +403,7 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
     // A capsule or a cylinder lying on its side: its points under its axis.
     const bool round_side = std::holds_alternative<Capsule<T>>(convex) || std::holds_alternative<Cylinder<T>>(convex);
     const Vec3<T> axis = pose.apply_direction(Vec3<T>::unit_y());
+    const Capsule<T>* capsule = std::get_if<Capsule<T>>(&convex);
     // Triangle k's manifold joins the group of its normal (within same_normal), or starts one.
     const auto group_up = [&](std::uint32_t k, const ContactManifold<T>& c) {
         detail::NormalGroup<T>* group = nullptr;
@@ -430,7 +460,8 @@ void collide_mesh(const MeshShape<T>& m, const Transform<T>& pose_mesh, const Sh
         for_each_triangle(
             m, box,
             [&](std::uint32_t k, const MeshTriangle<T>& t) {
-                const ContactManifold<T> c = detail::triangle_manifold(t, shape, pose, centre, margin, exact_depth_above);
+                ContactManifold<T> c = detail::triangle_manifold(t, shape, pose, centre, margin, exact_depth_above);
+                if (capsule) detail::add_capsule_ends(t, *capsule, pose, centre, margin, c);
                 if (c.count > 0) classify(k, t, c);
             },
             reaches);
