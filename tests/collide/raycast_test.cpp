@@ -501,6 +501,11 @@ TEST_CASE_TEMPLATE("regression: a mesh's, a heightfield's and a box's ray casts 
     REQUIRE(on_field);
     CHECK(near(on_mesh->first.distance, T(3)));
     CHECK(near(on_field->first.distance, T(3)));
+    // Regression: the members' hits had no fraction (0 for a hit 3 m down a 10 m ray).
+    CHECK(near(on_mesh->first.fraction, T(0.3)));
+    CHECK(near(on_field->first.fraction, T(0.3)));
+    const Ray<T> endless{above, down, ScalarTraits<T>::max};  // as RayHit says: no fraction of an endless ray
+    CHECK(mesh.raycast(endless)->first.fraction == T(0));
     const std::optional<T> into_box = raycast(box, good);
     REQUIRE(into_box);
     CHECK(near(*into_box, T(2)));

@@ -42,6 +42,12 @@ struct RayHit {
 
 namespace detail {
 
+/// RayHit::fraction of a hit `distance` along a ray reaching `max_distance`.
+template <class T>
+T ray_fraction(T distance, T max_distance) {
+    return max_distance < ScalarTraits<T>::max ? distance / max_distance : T(0);
+}
+
 /// The ray as the ray casts use it, or an InvalidArgument from `where` (Ray). A NaN or zero
 /// direction, a NaN or infinite origin and a max_distance of 0 were silent misses or a fraction
 /// of 0/0 in raycast(shape, pose, ray). The skip up to a far shape (ray_skip) and the distances
@@ -334,7 +340,7 @@ std::optional<RayHit<T>> raycast_checked(const Shape<T>& shape, const Transform<
     if (!hit) return std::nullopt;
     RayHit<T> out;
     out.distance = s->skip + hit->t;
-    out.fraction = ray.max_distance < ScalarTraits<T>::max ? out.distance / ray.max_distance : T(0);
+    out.fraction = detail::ray_fraction(out.distance, ray.max_distance);
     out.point = s->start + ray.direction * hit->t;
     out.normal = pose.apply_direction(hit->n);
     return out;

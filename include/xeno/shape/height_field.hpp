@@ -252,7 +252,8 @@ void HeightField<T>::for_each_triangle(const Aabb<T>& box, F&& f, Keep keep) con
 template <class T>
 std::optional<std::pair<RayHit<T>, std::uint32_t>> HeightField<T>::raycast(const Ray<T>& ray) const {
     Ray<T> r = detail::checked_ray(ray, "HeightField::raycast");
-    if (empty()) return std::nullopt;  // moved from: no triangles
+    const T ray_reach = r.max_distance;  // r's shrinks to the nearest hit so far
+    if (empty()) return std::nullopt;    // moved from: no triangles
     const T extent = length(bounds_.max - bounds_.min) + spacing_;
     const T place = std::max({std::abs(r.origin.x), std::abs(r.origin.y), std::abs(r.origin.z)});
     const T pad = spacing_ * T(1e-3) + T(64) * ScalarTraits<T>::epsilon * (place + extent);
@@ -271,6 +272,7 @@ std::optional<std::pair<RayHit<T>, std::uint32_t>> HeightField<T>::raycast(const
             r.max_distance = *d;
             RayHit<T> hit;
             hit.distance = *d;
+            hit.fraction = detail::ray_fraction(*d, ray_reach);
             hit.point = r.origin + r.direction * *d;
             hit.normal = dot(t.normal, r.direction) <= T(0) ? t.normal : -t.normal;
             best = std::make_pair(hit, k);

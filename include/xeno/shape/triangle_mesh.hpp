@@ -412,6 +412,7 @@ struct RaySlabs {
 template <class T>
 std::optional<std::pair<RayHit<T>, std::uint32_t>> TriangleMesh<T>::raycast(const Ray<T>& ray) const {
     Ray<T> r = detail::checked_ray(ray, "TriangleMesh::raycast");
+    const T ray_reach = r.max_distance;       // r's shrinks to the nearest hit so far
     if (nodes_.empty()) return std::nullopt;  // moved from: no triangles
     const detail::RayFrame<T> frame(r);
     const detail::RaySlabs<T> slabs(r, nodes_[0].box);
@@ -430,6 +431,7 @@ std::optional<std::pair<RayHit<T>, std::uint32_t>> TriangleMesh<T>::raycast(cons
                     r.max_distance = *d;  // only nearer hits from now on
                     RayHit<T> hit;
                     hit.distance = *d;
+                    hit.fraction = detail::ray_fraction(*d, ray_reach);
                     hit.point = r.origin + r.direction * *d;
                     hit.normal = dot(t.normal, r.direction) <= T(0) ? t.normal : -t.normal;
                     best = std::make_pair(hit, source_[k]);
