@@ -526,6 +526,11 @@ void SnapshotAccess<T>::check_body(const World<T>& w, std::uint32_t slot) {
             bad("a static body moves; body slot");
     }
     if (b.enabled_ && !detail::box_ok(w.bounds_[slot])) bad("a body's broad-phase box is not finite with min <= max; body slot");
+    // A static body keeps its box until it is moved (World::keep_poses_and_update_bounds): one that
+    // does not hold the body (a corrupt box 1 km off, or a flipped sign bit) let bodies fall through
+    // the floor for good.
+    if (b.enabled_ && b.type_ == BodyType::static_body && !b.moved_ && !w.bounds_[slot].contains(b.world_bounds()))
+        bad("a static body's broad-phase box does not hold it; body slot");
     const Aabb<T> empty{};  // a disabled body's box stays empty so the broad phase never pairs it
     if (!b.enabled_ && std::memcmp(&w.bounds_[slot], &empty, sizeof empty) != 0)
         bad("a disabled body has a broad-phase box; body slot");
@@ -714,6 +719,13 @@ void SnapshotAccess<T>::check_pending_events(const World<T>& w) {
         bool ok = e.count >= 0 && e.count <= 4 && is_finite(e.normal) && std::isfinite(e.impulse);
         for (const Vec3<T>& p : e.points) ok = ok && is_finite(p);
         if (!ok) detail::report_corrupt("a pending event's normal, points or impulse are out of range; event", k);
+        // A part index names a part of its body while the body lives (a listener may index a
+        // compound's children with it); a destroyed body's is not looked at.
+        const auto part_ok = [&](BodyId id, std::uint32_t child) {
+            return !living(w, id) || child < w.bodies_[id.index].child_count();
+        };
+        if (!part_ok(e.a, e.child_a) || !part_ok(e.b, e.child_b))
+            detail::report_corrupt("a pending event's part index is out of range for its body; event", k);
     }
 }
 

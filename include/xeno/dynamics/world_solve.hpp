@@ -491,7 +491,7 @@ detail::BodyIntegration<T> World<T>::integration_constants(const Body<T>& b, con
 // position update carries an anchor along the chord of its body's turn, not along the tangent
 // ω × r the row holds. Where ω is not square to the lever the chord's pull towards the axis has
 // a part off the lever, which the relax pass turned into a steady loss: that disc's axle, at
-// 0.3 m, sank 16° in 4 s (about 3° a second at any spin), now 3.5° (docs/solver.md, "A gyroscope
+// 0.3 m, sank 16° in 4 s (about 3° a second at any spin), now 3.2° (docs/solver.md, "A gyroscope
 // on a ball joint"). The chord's shortening along the tangent counts too: without it a body
 // whirled round a joint spun itself up (chord_slip).
 template <class T>
